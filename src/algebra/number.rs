@@ -1,0 +1,443 @@
+//! Exact rational numbers: the coefficients of every expression.
+//!
+//! A [`Rational`] is a fraction in lowest terms with a positive denominator. Small values live in two
+//! `i64`s (the fast path: almost every coefficient of a robot model is small); anything that would
+//! overflow moves to a `BigRational`, so no computation ever overflows or rounds. The representation is
+//! private and canonical: a value that fits the small form is always stored in it, so derived equality
+//! and hashing are value equality.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use std::cmp::Ordering;
+use std::fmt;
+
+/// An exact rational number in lowest terms.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub struct Rational(Repr);
+
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum Repr {
+    /// numerator, denominator (> 0), coprime.
+    Small(i64, i64),
+    /// Only values that do not fit `Small`.
+    Big(BigRational),
+}
+
+fn gcd_i128(mut a: i128, mut b: i128) -> i128 {
+    a = a.abs();
+    b = b.abs();
+    while b != 0 {
+        let t = a % b;
+        a = b;
+        b = t;
+    }
+    a
+}
+
+impl Rational {
+    /// The integer `n`.
+    pub fn int(n: i64) -> Rational {
+        Rational(Repr::Small(n, 1))
+    }
+
+    /// Zero.
+    pub fn zero() -> Rational {
+        Rational::int(0)
+    }
+
+    /// One.
+    pub fn one() -> Rational {
+        Rational::int(1)
+    }
+
+    /// `num/den`, reduced. Returns `None` when `den` is zero.
+    pub fn new(num: i64, den: i64) -> Option<Rational> {
+        if den == 0 {
+            return None;
+        }
+        Some(Rational::from_i128(num as i128, den as i128))
+    }
+
+    fn from_i128(num: i128, den: i128) -> Rational {
+        debug_assert!(den != 0);
+        let g = gcd_i128(num, den).max(1);
+        let (mut n, mut d) = (num / g, den / g);
+        if d < 0 {
+            n = -n;
+            d = -d;
+        }
+        match (i64::try_from(n), i64::try_from(d)) {
+            (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
+            _ => Rational(Repr::Big(BigRational::new(BigInt::from(n), BigInt::from(d)))),
+        }
+    }
+
+    /// From a big rational, normalising to the small form when it fits.
+    pub fn from_big(r: BigRational) -> Rational {
+        if let (Some(n), Some(d)) = (r.numer().to_i64(), r.denom().to_i64()) {
+            return Rational(Repr::Small(n, d));
+        }
+        Rational(Repr::Big(r))
+    }
+
+    /// From big integers `num/den`; `None` when `den` is zero.
+    pub fn from_bigints(num: BigInt, den: BigInt) -> Option<Rational> {
+        if den.is_zero() {
+            return None;
+        }
+        Some(Rational::from_big(BigRational::new(num, den)))
+    }
+
+    /// The value as a `BigRational`.
+    pub fn to_big(&self) -> BigRational {
+        match &self.0 {
+            Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
+            Repr::Big(r) => r.clone(),
+        }
+    }
+
+    /// The numerator (sign included).
+    pub fn numer(&self) -> BigInt {
+        match &self.0 {
+            Repr::Small(n, _) => BigInt::from(*n),
+            Repr::Big(r) => r.numer().clone(),
+        }
+    }
+
+    /// The denominator (always positive).
+    pub fn denom(&self) -> BigInt {
+        match &self.0 {
+            Repr::Small(_, d) => BigInt::from(*d),
+            Repr::Big(r) => r.denom().clone(),
+        }
+    }
+
+    /// The numerator and denominator when both fit in `i64`.
+    pub fn as_small(&self) -> Option<(i64, i64)> {
+        match self.0 {
+            Repr::Small(n, d) => Some((n, d)),
+            Repr::Big(_) => None,
+        }
+    }
+
+    /// Whether this is zero.
+    pub fn is_zero(&self) -> bool {
+        matches!(self.0, Repr::Small(0, _))
+    }
+
+    /// Whether this is one.
+    pub fn is_one(&self) -> bool {
+        matches!(self.0, Repr::Small(1, 1))
+    }
+
+    /// Whether this is minus one.
+    pub fn is_minus_one(&self) -> bool {
+        matches!(self.0, Repr::Small(-1, 1))
+    }
+
+    /// Whether this is an integer.
+    pub fn is_integer(&self) -> bool {
+        match &self.0 {
+            Repr::Small(_, d) => *d == 1,
+            Repr::Big(r) => r.is_integer(),
+        }
+    }
+
+    /// The value as an `i64` when it is an integer that fits.
+    pub fn to_i64(&self) -> Option<i64> {
+        match self.0 {
+            Repr::Small(n, 1) => Some(n),
+            _ => None,
+        }
+    }
+
+    /// Whether this is negative.
+    pub fn is_negative(&self) -> bool {
+        match &self.0 {
+            Repr::Small(n, _) => *n < 0,
+            Repr::Big(r) => r.is_negative(),
+        }
+    }
+
+    /// The absolute value.
+    pub fn abs(&self) -> Rational {
+        if self.is_negative() {
+            -self
+        } else {
+            self.clone()
+        }
+    }
+
+    /// The nearest `f64`.
+    pub fn to_f64(&self) -> f64 {
+        match &self.0 {
+            Repr::Small(n, d) => *n as f64 / *d as f64,
+            Repr::Big(r) => {
+                // Scale so that both parts fit comfortably in f64 range.
+                let n = r.numer().to_f64().unwrap_or(f64::NAN);
+                let d = r.denom().to_f64().unwrap_or(f64::NAN);
+                if n.is_finite() && d.is_finite() {
+                    n / d
+                } else {
+                    let bits = r.numer().bits().max(r.denom().bits()) as i64 - 1000;
+                    let shift = bits.max(0) as usize;
+                    let n = (r.numer() >> shift).to_f64().unwrap_or(0.0);
+                    let d = (r.denom() >> shift).to_f64().unwrap_or(f64::INFINITY);
+                    n / d
+                }
+            }
+        }
+    }
+
+    /// The reciprocal; `None` for zero.
+    pub fn recip(&self) -> Option<Rational> {
+        if self.is_zero() {
+            return None;
+        }
+        Some(match &self.0 {
+            Repr::Small(n, d) => Rational::from_i128(*d as i128, *n as i128),
+            Repr::Big(r) => Rational::from_big(r.recip()),
+        })
+    }
+
+    /// `self^e` for an integer exponent; `None` for `0^e` with `e < 0`.
+    pub fn pow(&self, e: i64) -> Option<Rational> {
+        if e < 0 {
+            return self.recip()?.pow(-e);
+        }
+        let mut base = self.clone();
+        let mut acc = Rational::one();
+        let mut e = e as u64;
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = &acc * &base;
+            }
+            e >>= 1;
+            if e > 0 {
+                base = &base * &base;
+            }
+        }
+        Some(acc)
+    }
+
+    /// Greatest common divisor of two rationals: gcd of numerators over lcm of denominators (positive).
+    pub fn gcd(&self, other: &Rational) -> Rational {
+        let n = self.numer().gcd(&other.numer());
+        let d = self.denom().lcm(&other.denom());
+        if n.is_zero() {
+            return Rational::zero();
+        }
+        Rational::from_big(BigRational::new(n, d))
+    }
+
+    /// Exact value of a decimal literal such as `0.4318` or `1.2e-3`; `None` if it is not one.
+    pub fn parse_decimal(text: &str) -> Option<Rational> {
+        let (mantissa, exponent) = match text.find(['e', 'E']) {
+            Some(i) => (&text[..i], text[i + 1..].parse::<i64>().ok()?),
+            None => (text, 0),
+        };
+        let (int_part, frac_part) = match mantissa.find('.') {
+            Some(i) => (&mantissa[..i], &mantissa[i + 1..]),
+            None => (mantissa, ""),
+        };
+        if int_part.is_empty() && frac_part.is_empty() {
+            return None;
+        }
+        if !int_part.bytes().chain(frac_part.bytes()).all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let digits = format!("{int_part}{frac_part}");
+        let num: BigInt = digits.parse().ok()?;
+        let scale = exponent - frac_part.len() as i64;
+        if scale.unsigned_abs() > 100_000 {
+            return None;
+        }
+        let ten = BigInt::from(10);
+        let value = if scale >= 0 {
+            BigRational::from_integer(num * num_traits::pow(ten, scale as usize))
+        } else {
+            BigRational::new(num, num_traits::pow(ten, (-scale) as usize))
+        };
+        Some(Rational::from_big(value))
+    }
+}
+
+impl Default for Rational {
+    fn default() -> Self {
+        Rational::zero()
+    }
+}
+
+impl From<i64> for Rational {
+    fn from(n: i64) -> Self {
+        Rational::int(n)
+    }
+}
+
+impl From<BigInt> for Rational {
+    fn from(n: BigInt) -> Self {
+        Rational::from_big(BigRational::from_integer(n))
+    }
+}
+
+impl Ord for Rational {
+    fn cmp(&self, other: &Self) -> Ordering {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
+                ((*a as i128) * (*d as i128)).cmp(&((*c as i128) * (*b as i128)))
+            }
+            _ => self.to_big().cmp(&other.to_big()),
+        }
+    }
+}
+
+impl PartialOrd for Rational {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+macro_rules! binop {
+    ($trait:ident, $method:ident, $small:expr, $big:expr) => {
+        impl std::ops::$trait<&Rational> for &Rational {
+            type Output = Rational;
+            fn $method(self, rhs: &Rational) -> Rational {
+                if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &rhs.0) {
+                    let f: fn(i128, i128, i128, i128) -> Option<(i128, i128)> = $small;
+                    if let Some((n, d)) = f(*a as i128, *b as i128, *c as i128, *d as i128) {
+                        return Rational::from_i128(n, d);
+                    }
+                }
+                let g: fn(BigRational, BigRational) -> BigRational = $big;
+                Rational::from_big(g(self.to_big(), rhs.to_big()))
+            }
+        }
+        impl std::ops::$trait<Rational> for Rational {
+            type Output = Rational;
+            fn $method(self, rhs: Rational) -> Rational {
+                std::ops::$trait::$method(&self, &rhs)
+            }
+        }
+    };
+}
+
+binop!(
+    Add,
+    add,
+    |a, b, c, d| Some((a.checked_mul(d)?.checked_add(c.checked_mul(b)?)?, b.checked_mul(d)?)),
+    |x, y| x + y
+);
+binop!(
+    Sub,
+    sub,
+    |a, b, c, d| Some((a.checked_mul(d)?.checked_sub(c.checked_mul(b)?)?, b.checked_mul(d)?)),
+    |x, y| x - y
+);
+binop!(Mul, mul, |a, b, c, d| Some((a.checked_mul(c)?, b.checked_mul(d)?)), |x, y| x * y);
+
+impl std::ops::Neg for &Rational {
+    type Output = Rational;
+    fn neg(self) -> Rational {
+        match &self.0 {
+            Repr::Small(n, d) => Rational::from_i128(-(*n as i128), *d as i128),
+            Repr::Big(r) => Rational::from_big(-r.clone()),
+        }
+    }
+}
+
+impl std::ops::Neg for Rational {
+    type Output = Rational;
+    fn neg(self) -> Rational {
+        -&self
+    }
+}
+
+impl std::ops::AddAssign<&Rational> for Rational {
+    fn add_assign(&mut self, rhs: &Rational) {
+        *self = &*self + rhs;
+    }
+}
+
+impl fmt::Display for Rational {
+    /// `n` or `n/d`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.0 {
+            Repr::Small(n, 1) => write!(f, "{n}"),
+            Repr::Small(n, d) => write!(f, "{n}/{d}"),
+            Repr::Big(r) if r.is_integer() => write!(f, "{}", r.numer()),
+            Repr::Big(r) => write!(f, "{}/{}", r.numer(), r.denom()),
+        }
+    }
+}
+
+impl fmt::Debug for Rational {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(self, f)
+    }
+}
+
+/// The largest `k` with `k^2 | n` and the square-free rest: `n = k^2 * rest`. `n` must be positive.
+pub fn split_square(n: &BigInt) -> (BigInt, BigInt) {
+    debug_assert!(n.is_positive());
+    let mut k = BigInt::one();
+    let mut rest = n.clone();
+    // Trial division is enough for the radicands a robot model meets (2, 3, 6, ...). Beyond a bound the
+    // remainder is kept as is: still exact, merely not fully reduced.
+    let mut p = BigInt::from(2);
+    let bound = BigInt::from(100_000);
+    while &p * &p <= rest && p < bound {
+        let sq = &p * &p;
+        while (&rest % &sq).is_zero() {
+            rest /= &sq;
+            k *= &p;
+        }
+        p += 1;
+    }
+    (k, rest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn r(n: i64, d: i64) -> Rational {
+        Rational::new(n, d).unwrap()
+    }
+
+    #[test]
+    fn arithmetic_is_exact_and_reduced() {
+        assert_eq!(&r(1, 3) + &r(1, 6), r(1, 2));
+        assert_eq!(&r(17, 192) + &r(1, 4), r(65, 192));
+        assert_eq!(&r(2, 4) * &r(2, 1), Rational::one());
+        assert_eq!(r(3, -6), r(-1, 2));
+    }
+
+    #[test]
+    fn overflow_moves_to_big_and_back() {
+        let big = Rational::int(i64::MAX);
+        let sq = &big * &big;
+        assert!(sq.as_small().is_none());
+        let back = &sq * &big.recip().unwrap();
+        assert_eq!(back, big);
+        assert!(back.as_small().is_some());
+    }
+
+    #[test]
+    fn decimals_are_exact() {
+        assert_eq!(Rational::parse_decimal("0.4318"), Some(r(2159, 5000)));
+        assert_eq!(Rational::parse_decimal("1.2e-3"), Some(r(3, 2500)));
+        assert_eq!(Rational::parse_decimal("90"), Some(Rational::int(90)));
+        assert_eq!(Rational::parse_decimal("1e2"), Some(Rational::int(100)));
+        assert_eq!(Rational::parse_decimal("."), None);
+    }
+
+    #[test]
+    fn powers_and_square_parts() {
+        assert_eq!(r(2, 3).pow(-2), Some(r(9, 4)));
+        assert_eq!(Rational::zero().pow(-1), None);
+        assert_eq!(split_square(&BigInt::from(12)), (BigInt::from(2), BigInt::from(3)));
+        assert_eq!(split_square(&BigInt::from(2)), (BigInt::from(1), BigInt::from(2)));
+    }
+}

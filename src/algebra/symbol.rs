@@ -1,0 +1,196 @@
+//! Symbols: named parameters (`m1`, `lc2`, `theta`) and the generalised coordinates of time.
+//!
+//! A coordinate `q_i` and its time derivatives `q̇_i`, `q̈_i` are one family, [`Symbol::Coord`], told
+//! apart by the derivative order. They are the only symbols that depend on time, which is all the
+//! algebra core knows of them: d/dt q_i^(k) = q_i^(k+1), and every other symbol is constant. Joints,
+//! frames and robots belong to the dynamics layer.
+//!
+//! Symbols order *naturally*: names compare by runs of letters and runs of digits, so `m2 < m10`; every
+//! parameter sorts before every coordinate.
+
+use std::cmp::Ordering;
+use std::fmt;
+use std::sync::Arc;
+
+/// A symbol of an expression.
+#[derive(Clone, PartialEq, Eq, Hash)]
+pub enum Symbol {
+    /// A constant parameter, by name (`m1`, `I_xx1`, `alpha`).
+    Param(Arc<str>),
+    /// The generalised coordinate `q_index` differentiated `order` times in time (0: `q`, 1: `q̇`, 2: `q̈`).
+    Coord {
+        /// The coordinate's index, from 1.
+        index: u32,
+        /// How many times it is differentiated in time.
+        order: u8,
+    },
+}
+
+impl Symbol {
+    /// A parameter named `name`. Names that spell a coordinate (`q1`, `qd2`, `qdd3`) give the coordinate.
+    pub fn new(name: &str) -> Symbol {
+        Symbol::coord_from_name(name).unwrap_or_else(|| Symbol::Param(Arc::from(name)))
+    }
+
+    /// `q_index`.
+    pub fn q(index: u32) -> Symbol {
+        Symbol::Coord { index, order: 0 }
+    }
+
+    /// `q̇_index`.
+    pub fn qd(index: u32) -> Symbol {
+        Symbol::Coord { index, order: 1 }
+    }
+
+    /// `q̈_index`.
+    pub fn qdd(index: u32) -> Symbol {
+        Symbol::Coord { index, order: 2 }
+    }
+
+    /// Reads `qN`, `qdN`, `qddN` (ASCII) and `q̇N`, `q̈N` (q followed by a combining dot above U+0307 or
+    /// diaeresis U+0308), with `N` a positive integer without leading zeros.
+    pub fn coord_from_name(name: &str) -> Option<Symbol> {
+        let rest = name.strip_prefix('q')?;
+        let (order, digits) = if let Some(d) = rest.strip_prefix("dd") {
+            (2, d)
+        } else if let Some(d) = rest.strip_prefix('d') {
+            (1, d)
+        } else if let Some(d) = rest.strip_prefix('\u{308}') {
+            (2, d)
+        } else if let Some(d) = rest.strip_prefix('\u{307}') {
+            (1, d)
+        } else {
+            (0, rest)
+        };
+        if digits.is_empty() || digits.starts_with('0') || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let index: u32 = digits.parse().ok()?;
+        Some(Symbol::Coord { index, order })
+    }
+
+    /// The parameter's name, or `None` for a coordinate.
+    pub fn param_name(&self) -> Option<&str> {
+        match self {
+            Symbol::Param(n) => Some(n),
+            Symbol::Coord { .. } => None,
+        }
+    }
+
+    /// Whether the symbol depends on time (is a coordinate or one of its derivatives).
+    pub fn is_coord(&self) -> bool {
+        matches!(self, Symbol::Coord { .. })
+    }
+
+    /// The time derivative: `Some(q^(k+1))` for a coordinate, `None` for a constant parameter.
+    pub fn time_derivative(&self) -> Option<Symbol> {
+        match self {
+            Symbol::Param(_) => None,
+            Symbol::Coord { index, order } => Some(Symbol::Coord {
+                index: *index,
+                order: order.saturating_add(1),
+            }),
+        }
+    }
+
+    /// The ASCII name the parser reads back: `m1`, `q1`, `qd1`, `qdd1` (higher derivatives `qd3_1`-style
+    /// names do not exist in the grammar, so they are written `q1_d3`, which is only a parameter name).
+    pub fn ascii_name(&self) -> String {
+        match self {
+            Symbol::Param(n) => n.to_string(),
+            Symbol::Coord { index, order: 0 } => format!("q{index}"),
+            Symbol::Coord { index, order: 1 } => format!("qd{index}"),
+            Symbol::Coord { index, order: 2 } => format!("qdd{index}"),
+            Symbol::Coord { index, order } => format!("q{index}_d{order}"),
+        }
+    }
+}
+
+/// Compares names naturally: runs of digits by value, everything else by character.
+pub fn natural_cmp(a: &str, b: &str) -> Ordering {
+    let (mut x, mut y) = (a.as_bytes(), b.as_bytes());
+    loop {
+        match (x.first(), y.first()) {
+            (None, None) => return a.cmp(b),
+            (None, Some(_)) => return Ordering::Less,
+            (Some(_), None) => return Ordering::Greater,
+            (Some(c), Some(d)) if c.is_ascii_digit() && d.is_ascii_digit() => {
+                let n = x.iter().take_while(|b| b.is_ascii_digit()).count();
+                let m = y.iter().take_while(|b| b.is_ascii_digit()).count();
+                let (dx, dy) = (&x[..n], &y[..m]);
+                let tx = dx.iter().position(|&b| b != b'0').map_or(&dx[n..], |i| &dx[i..]);
+                let ty = dy.iter().position(|&b| b != b'0').map_or(&dy[m..], |i| &dy[i..]);
+                let ord = tx.len().cmp(&ty.len()).then_with(|| tx.cmp(ty));
+                if ord != Ordering::Equal {
+                    return ord;
+                }
+                x = &x[n..];
+                y = &y[m..];
+            }
+            (Some(c), Some(d)) => {
+                if c != d {
+                    return c.cmp(d);
+                }
+                x = &x[1..];
+                y = &y[1..];
+            }
+        }
+    }
+}
+
+impl Ord for Symbol {
+    fn cmp(&self, other: &Self) -> Ordering {
+        match (self, other) {
+            (Symbol::Param(a), Symbol::Param(b)) => natural_cmp(a, b),
+            (Symbol::Param(_), Symbol::Coord { .. }) => Ordering::Less,
+            (Symbol::Coord { .. }, Symbol::Param(_)) => Ordering::Greater,
+            (Symbol::Coord { index: i, order: a }, Symbol::Coord { index: j, order: b }) => {
+                a.cmp(b).then(i.cmp(j))
+            }
+        }
+    }
+}
+
+impl PartialOrd for Symbol {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl fmt::Debug for Symbol {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.ascii_name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coordinate_names() {
+        let rows = [
+            ("q1", Some(Symbol::q(1))),
+            ("qd2", Some(Symbol::qd(2))),
+            ("qdd12", Some(Symbol::qdd(12))),
+            ("q\u{307}3", Some(Symbol::qd(3))),
+            ("q\u{308}3", Some(Symbol::qdd(3))),
+            ("q0", None),
+            ("q01", None),
+            ("q", None),
+            ("qx1", None),
+        ];
+        for (name, want) in rows {
+            assert_eq!(Symbol::coord_from_name(name), want, "{name}");
+        }
+    }
+
+    #[test]
+    fn natural_order() {
+        assert_eq!(natural_cmp("m2", "m10"), Ordering::Less);
+        assert_eq!(natural_cmp("lc2", "l1"), Ordering::Greater);
+        assert_eq!(natural_cmp("I_xx1", "I_xx1"), Ordering::Equal);
+        assert!(Symbol::new("zeta") < Symbol::q(1));
+        assert!(Symbol::q(2) < Symbol::qd(1));
+    }
+}

@@ -1,0 +1,3 @@
+//! symdyn: exact symbolic equations of motion for serial robot manipulators.
+
+pub mod algebra;
