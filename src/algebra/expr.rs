@@ -255,7 +255,7 @@ impl Expr {
     pub fn sum<I: IntoIterator<Item = Expr>>(items: I) -> Expr {
         let mut constant = Rational::zero();
         let mut terms: BTreeMap<Expr, Rational> = BTreeMap::new();
-        let mut put = |t: Expr, c: Rational, terms: &mut BTreeMap<Expr, Rational>| {
+        let put = |t: Expr, c: Rational, terms: &mut BTreeMap<Expr, Rational>| {
             if c.is_zero() {
                 return;
             }

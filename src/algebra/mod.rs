@@ -2,14 +2,29 @@
 //!
 //! Nothing here knows of robots. The only time-dependent symbols are the generalised coordinates
 //! `q_i` and their derivatives, which the total time derivative needs.
+//!
+//! - [`expr`]: the canonical [`Expr`] and its constructors; [`number`], [`symbol`]: its leaves.
+//! - [`poly`], [`atom`], [`normal`]: the polynomial normal form and the zero test.
+//! - [`calculus`]: `∂/∂x` and `d/dt`; [`subs`], [`eval`]: substitution and numbers.
 
+pub mod atom;
+pub mod calculus;
 pub mod error;
+pub mod eval;
 pub mod expr;
+pub mod normal;
 pub mod number;
+pub mod poly;
+pub mod subs;
 pub mod symbol;
 pub(crate) mod trig_values;
 
+pub use calculus::{diff, dt};
 pub use error::AlgebraError;
+pub use eval::{eval_exact, eval_f64, EvalError};
 pub use expr::{Expr, Func, Kind};
+pub use normal::{equal, is_zero, normal_form, to_poly};
 pub use number::Rational;
+pub use poly::Poly;
+pub use subs::subs;
 pub use symbol::Symbol;

@@ -1,0 +1,161 @@
+//! Atoms of the polynomial normal form, interned to small integer ids.
+//!
+//! An atom is a symbol, π, a surd `sqrt(k)`, `sin x` or `cos x` of an angle symbol `x`, or an opaque
+//! canonical [`Expr`] that the normal form does not look into (a negative power of a sum, `sin` of a
+//! non-linear argument). The id of an atom carries its class in the top bits, so the hot loops of
+//! polynomial multiplication can spot `sin x` and find `cos x` without a lookup: both share the serial
+//! number of `x`.
+//!
+//! Ids are handed out in creation order and are therefore only an *internal* order: nothing printed
+//! depends on them, because a [`super::poly::Poly`] is turned back into a canonical `Expr` (sorted by
+//! the structural order) before anyone sees it.
+
+use super::expr::Expr;
+use super::symbol::Symbol;
+use num_bigint::BigInt;
+use std::collections::HashMap;
+use std::sync::{LazyLock, RwLock};
+
+/// An interned atom id: class in the top 4 bits, serial below.
+pub type AtomId = u32;
+
+const SHIFT: u32 = 28;
+const SERIAL: u32 = (1 << SHIFT) - 1;
+
+/// The class of an atom, stored in its id.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Class {
+    /// A constant parameter.
+    Param = 0,
+    /// A coordinate or one of its time derivatives.
+    Coord = 1,
+    /// π.
+    Pi = 2,
+    /// `sqrt(k)`.
+    Sqrt = 3,
+    /// `cos x` of an angle symbol.
+    Cos = 4,
+    /// `sin x` of an angle symbol.
+    Sin = 5,
+    /// An opaque expression.
+    Other = 6,
+}
+
+/// What an interned serial stands for.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub enum Atom {
+    /// A symbol; also the angle of `sin`/`cos` atoms with the same serial.
+    Sym(Symbol),
+    /// π.
+    Pi,
+    /// `sqrt(k)`, `k` square-free and at least 2.
+    Sqrt(BigInt),
+    /// An opaque canonical expression.
+    Other(Expr),
+}
+
+#[derive(Default)]
+struct Interner {
+    atoms: Vec<Atom>,
+    index: HashMap<Atom, u32>,
+}
+
+static INTERNER: LazyLock<RwLock<Interner>> = LazyLock::new(|| RwLock::new(Interner::default()));
+
+fn serial_of(atom: Atom) -> u32 {
+    if let Some(&s) = INTERNER.read().expect("interner lock").index.get(&atom) {
+        return s;
+    }
+    let mut w = INTERNER.write().expect("interner lock");
+    if let Some(&s) = w.index.get(&atom) {
+        return s;
+    }
+    let s = w.atoms.len() as u32;
+    assert!(s < SERIAL, "more than 2^28 distinct atoms");
+    w.atoms.push(atom.clone());
+    w.index.insert(atom, s);
+    s
+}
+
+fn make(class: Class, serial: u32) -> AtomId {
+    ((class as u32) << SHIFT) | serial
+}
+
+/// The class of an id.
+pub fn class(id: AtomId) -> Class {
+    match id >> SHIFT {
+        0 => Class::Param,
+        1 => Class::Coord,
+        2 => Class::Pi,
+        3 => Class::Sqrt,
+        4 => Class::Cos,
+        5 => Class::Sin,
+        _ => Class::Other,
+    }
+}
+
+/// The id of a symbol.
+pub fn sym(s: &Symbol) -> AtomId {
+    let class = if s.is_coord() { Class::Coord } else { Class::Param };
+    make(class, serial_of(Atom::Sym(s.clone())))
+}
+
+/// The id of π.
+pub fn pi() -> AtomId {
+    make(Class::Pi, serial_of(Atom::Pi))
+}
+
+/// The id of `sqrt(k)`.
+pub fn sqrt(k: &BigInt) -> AtomId {
+    make(Class::Sqrt, serial_of(Atom::Sqrt(k.clone())))
+}
+
+/// The id of `sin x`.
+pub fn sin(x: &Symbol) -> AtomId {
+    make(Class::Sin, serial_of(Atom::Sym(x.clone())))
+}
+
+/// The id of `cos x`.
+pub fn cos(x: &Symbol) -> AtomId {
+    make(Class::Cos, serial_of(Atom::Sym(x.clone())))
+}
+
+/// The id of an opaque expression.
+pub fn other(e: &Expr) -> AtomId {
+    make(Class::Other, serial_of(Atom::Other(e.clone())))
+}
+
+/// `cos x` for `sin x` and back.
+pub fn partner(id: AtomId) -> AtomId {
+    match class(id) {
+        Class::Sin => make(Class::Cos, id & SERIAL),
+        Class::Cos => make(Class::Sin, id & SERIAL),
+        _ => id,
+    }
+}
+
+/// The symbol of a `Param`/`Coord` id, or the angle of a `Sin`/`Cos` id.
+pub fn symbol_of(id: AtomId) -> Option<Symbol> {
+    match lookup(id) {
+        Atom::Sym(s) => Some(s),
+        _ => None,
+    }
+}
+
+/// What an id stands for (for `Sin`/`Cos` ids: the angle's symbol).
+pub fn lookup(id: AtomId) -> Atom {
+    INTERNER.read().expect("interner lock").atoms[(id & SERIAL) as usize].clone()
+}
+
+/// The atom as a canonical expression.
+pub fn to_expr(id: AtomId) -> Expr {
+    let atom = lookup(id);
+    match (class(id), atom) {
+        (Class::Sin, Atom::Sym(s)) => Expr::sin(&Expr::sym(s)),
+        (Class::Cos, Atom::Sym(s)) => Expr::cos(&Expr::sym(s)),
+        (_, Atom::Sym(s)) => Expr::sym(s),
+        (_, Atom::Pi) => Expr::pi(),
+        (_, Atom::Sqrt(k)) => Expr::sqrt(&Expr::num(k.into())).expect("positive radicand"),
+        (_, Atom::Other(e)) => e,
+    }
+}

@@ -1,0 +1,485 @@
+//! The polynomial normal form: the engine behind the zero test and the fast derivations.
+//!
+//! A [`Poly`] is a sum of monomials with exact rational coefficients. A monomial is a product of atoms
+//! (see [`super::atom`]) to integer powers. Two reductions keep the form unique:
+//! - `sin² x = 1 − cos² x`: no monomial holds `sin x` to a power of two or more;
+//! - surds: at most one `sqrt(k)` per monomial, to the power one.
+//!
+//! For polynomials in symbols, `q̇`, `q̈`, and `sin`/`cos` of angle symbols, this form is canonical:
+//! the ring `Q[…, s, c]/(s² + c² − 1)` has the basis `{cᵏ, s cᵏ}` in each angle, so two such
+//! polynomials are equal as functions if and only if their normal forms are identical.
+//!
+//! Monomials are sorted by atom id (an internal order); the conversion back to [`Expr`] sorts
+//! canonically, so nothing printed depends on the internal order.
+
+use super::atom::{self, AtomId, Class};
+use super::expr::Expr;
+use super::number::{split_square, Rational};
+use super::symbol::Symbol;
+use num_bigint::BigInt;
+use num_traits::One;
+use std::collections::HashMap;
+
+/// A monomial: atoms with non-zero integer exponents, sorted by id.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Mono(Vec<(AtomId, i32)>);
+
+impl Mono {
+    /// The empty monomial, 1.
+    pub fn one() -> Mono {
+        Mono(Vec::new())
+    }
+
+    /// A single atom to a power.
+    pub fn atom(id: AtomId, e: i32) -> Mono {
+        if e == 0 {
+            Mono::one()
+        } else {
+            Mono(vec![(id, e)])
+        }
+    }
+
+    /// From atoms already sorted by id with non-zero exponents.
+    pub(crate) fn from_sorted(v: Vec<(AtomId, i32)>) -> Mono {
+        debug_assert!(v.windows(2).all(|w| w[0].0 < w[1].0) && v.iter().all(|&(_, e)| e != 0));
+        Mono(v)
+    }
+
+    /// The atoms and exponents.
+    pub fn factors(&self) -> &[(AtomId, i32)] {
+        &self.0
+    }
+
+    /// The exponent of an atom (0 if absent).
+    pub fn exponent(&self, id: AtomId) -> i32 {
+        self.0
+            .binary_search_by_key(&id, |(a, _)| *a)
+            .map_or(0, |i| self.0[i].1)
+    }
+
+    /// The product of two monomials (exponents added, no reduction).
+    fn mul(&self, other: &Mono) -> Mono {
+        let (a, b) = (&self.0, &other.0);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i]);
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push(b[j]);
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    let e = a[i].1 + b[j].1;
+                    if e != 0 {
+                        out.push((a[i].0, e));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Mono(out)
+    }
+
+    /// Sets the exponent of an atom (removing it at 0).
+    fn with(&self, id: AtomId, e: i32) -> Mono {
+        let mut v = self.0.clone();
+        match v.binary_search_by_key(&id, |(a, _)| *a) {
+            Ok(i) if e == 0 => {
+                v.remove(i);
+            }
+            Ok(i) => v[i].1 = e,
+            Err(i) if e != 0 => v.insert(i, (id, e)),
+            Err(_) => {}
+        }
+        Mono(v)
+    }
+
+    fn needs_reduction(&self) -> bool {
+        let mut surds = 0;
+        for &(id, e) in &self.0 {
+            match atom::class(id) {
+                Class::Sin if e >= 2 => return true,
+                Class::Sqrt => {
+                    surds += 1;
+                    if e != 1 || surds > 1 {
+                        return true;
+                    }
+                }
+                _ => {}
+            }
+        }
+        false
+    }
+
+    /// Whether every atom is a symbol to a non-negative power (a plain polynomial monomial).
+    pub fn is_polynomial_in_symbols(&self) -> bool {
+        self.0
+            .iter()
+            .all(|&(id, e)| e > 0 && matches!(atom::class(id), Class::Param | Class::Coord))
+    }
+}
+
+/// Calls `out` with the reduced monomials whose sum equals `coeff · m`.
+fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
+    if !m.needs_reduction() {
+        out(m, coeff);
+        return;
+    }
+    // Surds first: they only change the coefficient and at most one atom.
+    let surds: Vec<(AtomId, i32)> = m
+        .0
+        .iter()
+        .copied()
+        .filter(|&(id, _)| atom::class(id) == Class::Sqrt)
+        .collect();
+    let surd_bad = surds.len() > 1 || surds.iter().any(|&(_, e)| e != 1);
+    if surd_bad {
+        let mut coeff = coeff;
+        let mut radicand = BigInt::one();
+        let mut rest: Vec<(AtomId, i32)> = m
+            .0
+            .iter()
+            .copied()
+            .filter(|&(id, _)| atom::class(id) != Class::Sqrt)
+            .collect();
+        for (id, e) in surds {
+            let atom::Atom::Sqrt(k) = atom::lookup(id) else {
+                unreachable!("class Sqrt holds a surd")
+            };
+            let half = e.div_euclid(2) as i64;
+            coeff = &coeff * &Rational::from(k.clone()).pow(half).expect("k >= 2");
+            if e.rem_euclid(2) == 1 {
+                radicand *= k;
+            }
+        }
+        let (s, r) = split_square(&radicand);
+        coeff = &coeff * &Rational::from(s);
+        if !r.is_one() {
+            let id = atom::sqrt(&r);
+            let at = rest.partition_point(|&(a, _)| a < id);
+            rest.insert(at, (id, 1));
+        }
+        reduce(Mono(rest), coeff, out);
+        return;
+    }
+    // sin^e x = sin^(e mod 2) x · (1 − cos² x)^(e div 2)
+    let (sin_id, e) = m
+        .0
+        .iter()
+        .copied()
+        .find(|&(id, e)| atom::class(id) == Class::Sin && e >= 2)
+        .expect("needs_reduction found one");
+    let cos_id = atom::partner(sin_id);
+    let n = e / 2;
+    let base = m.with(sin_id, e % 2);
+    let cos_e = base.exponent(cos_id);
+    let mut binom = Rational::one();
+    for k in 0..=n {
+        let sign = if k % 2 == 0 { Rational::one() } else { Rational::int(-1) };
+        let term = base.with(cos_id, cos_e + 2 * k);
+        reduce(term, &(&coeff * &binom) * &sign, out);
+        // C(n, k+1) = C(n, k) (n − k)/(k + 1)
+        binom = &binom * &Rational::new((n - k) as i64, (k + 1) as i64).expect("non-zero");
+    }
+}
+
+/// A polynomial in atoms with rational coefficients, in normal form.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Poly {
+    terms: Vec<(Mono, Rational)>,
+}
+
+impl Poly {
+    /// Zero.
+    pub fn zero() -> Poly {
+        Poly { terms: Vec::new() }
+    }
+
+    /// A constant.
+    pub fn constant(c: Rational) -> Poly {
+        if c.is_zero() {
+            Poly::zero()
+        } else {
+            Poly {
+                terms: vec![(Mono::one(), c)],
+            }
+        }
+    }
+
+    /// One.
+    pub fn one() -> Poly {
+        Poly::constant(Rational::one())
+    }
+
+    /// An integer constant.
+    pub fn int(n: i64) -> Poly {
+        Poly::constant(Rational::int(n))
+    }
+
+    /// A single atom.
+    pub fn atom(id: AtomId) -> Poly {
+        Poly::term(Mono::atom(id, 1), Rational::one())
+    }
+
+    /// A symbol.
+    pub fn symbol(s: &Symbol) -> Poly {
+        Poly::atom(atom::sym(s))
+    }
+
+    /// `coeff · m`, reduced.
+    pub fn term(m: Mono, coeff: Rational) -> Poly {
+        let mut acc = Accumulator::default();
+        reduce(m, coeff, &mut |m, c| acc.add(m, c));
+        acc.finish()
+    }
+
+    /// From unsorted, possibly repeated and unreduced terms.
+    pub fn from_terms<I: IntoIterator<Item = (Mono, Rational)>>(terms: I) -> Poly {
+        let mut acc = Accumulator::default();
+        for (m, c) in terms {
+            reduce(m, c, &mut |m, c| acc.add(m, c));
+        }
+        acc.finish()
+    }
+
+    /// The terms, sorted by monomial (internal order), coefficients non-zero.
+    pub fn terms(&self) -> &[(Mono, Rational)] {
+        &self.terms
+    }
+
+    /// The number of terms.
+    pub fn len(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// Whether this is zero: the zero test.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The constant value, if the polynomial is a constant.
+    pub fn as_constant(&self) -> Option<Rational> {
+        match self.terms.as_slice() {
+            [] => Some(Rational::zero()),
+            [(m, c)] if m.0.is_empty() => Some(c.clone()),
+            _ => None,
+        }
+    }
+
+    /// `c · self`.
+    pub fn scale(&self, c: &Rational) -> Poly {
+        if c.is_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect(),
+        }
+    }
+
+    /// `self + other`, merging the sorted term lists.
+    pub fn add(&self, other: &Poly) -> Poly {
+        let (a, b) = (&self.terms, &other.terms);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i].clone());
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push(b[j].clone());
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    let c = &a[i].1 + &b[j].1;
+                    if !c.is_zero() {
+                        out.push((a[i].0.clone(), c));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Poly { terms: out }
+    }
+
+    /// `self − other`.
+    pub fn sub(&self, other: &Poly) -> Poly {
+        self.add(&other.scale(&Rational::int(-1)))
+    }
+
+    /// `−self`.
+    pub fn neg(&self) -> Poly {
+        self.scale(&Rational::int(-1))
+    }
+
+    /// `self · other`, reduced.
+    pub fn mul(&self, other: &Poly) -> Poly {
+        if self.is_zero() || other.is_zero() {
+            return Poly::zero();
+        }
+        if let Some(c) = self.as_constant() {
+            return other.scale(&c);
+        }
+        if let Some(c) = other.as_constant() {
+            return self.scale(&c);
+        }
+        let mut acc = Accumulator::default();
+        for (m, c) in &self.terms {
+            for (n, d) in &other.terms {
+                reduce(m.mul(n), c * d, &mut |m, c| acc.add(m, c));
+            }
+        }
+        acc.finish()
+    }
+
+    /// `self^e` for `e >= 0`.
+    pub fn pow(&self, e: u32) -> Poly {
+        let mut acc = Poly::one();
+        let mut base = self.clone();
+        let mut e = e;
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = acc.mul(&base);
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.mul(&base);
+            }
+        }
+        acc
+    }
+
+    /// The sum of many polynomials.
+    pub fn sum<'a, I: IntoIterator<Item = &'a Poly>>(items: I) -> Poly {
+        let mut acc = Accumulator::default();
+        for p in items {
+            for (m, c) in &p.terms {
+                acc.add(m.clone(), c.clone());
+            }
+        }
+        acc.finish()
+    }
+
+    /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
+    /// `d_atom` returns `None` for an atom whose derivative is zero.
+    pub fn derive(&self, d_atom: &mut dyn FnMut(AtomId) -> Option<Poly>) -> Poly {
+        let mut memo: HashMap<AtomId, Option<Poly>> = HashMap::new();
+        let mut acc = Accumulator::default();
+        for (m, c) in &self.terms {
+            for &(id, e) in &m.0 {
+                let d = memo.entry(id).or_insert_with(|| d_atom(id));
+                let Some(d) = d else { continue };
+                let rest = m.with(id, e - 1);
+                let k = c * &Rational::int(e as i64);
+                for (n, dc) in &d.terms {
+                    reduce(rest.mul(n), &k * dc, &mut |m, c| acc.add(m, c));
+                }
+            }
+        }
+        acc.finish()
+    }
+
+    /// The ids of all atoms that occur.
+    pub fn atoms(&self) -> std::collections::BTreeSet<AtomId> {
+        self.terms
+            .iter()
+            .flat_map(|(m, _)| m.0.iter().map(|&(id, _)| id))
+            .collect()
+    }
+
+    /// Whether the atom occurs.
+    pub fn contains_atom(&self, id: AtomId) -> bool {
+        self.terms.iter().any(|(m, _)| m.exponent(id) != 0)
+    }
+
+    /// The canonical expression of this polynomial (a sorted, expanded sum).
+    pub fn to_expr(&self) -> Expr {
+        let mut cache: HashMap<AtomId, Expr> = HashMap::new();
+        let terms: Vec<Expr> = self
+            .terms
+            .iter()
+            .map(|(m, c)| {
+                let mut factors = Vec::with_capacity(m.0.len() + 1);
+                factors.push(Expr::num(c.clone()));
+                for &(id, e) in &m.0 {
+                    let base = cache.entry(id).or_insert_with(|| atom::to_expr(id)).clone();
+                    factors.push(base.pow(e as i64).expect("atoms are never zero"));
+                }
+                Expr::product(factors)
+            })
+            .collect();
+        Expr::sum(terms)
+    }
+}
+
+/// Collects terms, adding equal monomials.
+#[derive(Default)]
+struct Accumulator {
+    map: HashMap<Mono, Rational>,
+}
+
+impl Accumulator {
+    fn add(&mut self, m: Mono, c: Rational) {
+        if c.is_zero() {
+            return;
+        }
+        match self.map.entry(m) {
+            std::collections::hash_map::Entry::Occupied(mut o) => {
+                let s = o.get() + &c;
+                if s.is_zero() {
+                    o.remove();
+                } else {
+                    *o.get_mut() = s;
+                }
+            }
+            std::collections::hash_map::Entry::Vacant(v) => {
+                v.insert(c);
+            }
+        }
+    }
+
+    fn finish(self) -> Poly {
+        let mut terms: Vec<(Mono, Rational)> = self.map.into_iter().collect();
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        Poly { terms }
+    }
+}
+
+impl std::ops::Add<&Poly> for &Poly {
+    type Output = Poly;
+    fn add(self, rhs: &Poly) -> Poly {
+        Poly::add(self, rhs)
+    }
+}
+
+impl std::ops::Sub<&Poly> for &Poly {
+    type Output = Poly;
+    fn sub(self, rhs: &Poly) -> Poly {
+        Poly::sub(self, rhs)
+    }
+}
+
+impl std::ops::Mul<&Poly> for &Poly {
+    type Output = Poly;
+    fn mul(self, rhs: &Poly) -> Poly {
+        Poly::mul(self, rhs)
+    }
+}
+
+impl std::ops::Neg for &Poly {
+    type Output = Poly;
+    fn neg(self) -> Poly {
+        Poly::neg(self)
+    }
+}
