@@ -96,7 +96,11 @@ pub fn class(id: AtomId) -> Class {
 
 /// The id of a symbol.
 pub fn sym(s: &Symbol) -> AtomId {
-    let class = if s.is_coord() { Class::Coord } else { Class::Param };
+    let class = if s.is_coord() {
+        Class::Coord
+    } else {
+        Class::Param
+    };
     make(class, serial_of(Atom::Sym(s.clone())))
 }
 
@@ -118,6 +122,16 @@ pub fn sin(x: &Symbol) -> AtomId {
 /// The id of `cos x`.
 pub fn cos(x: &Symbol) -> AtomId {
     make(Class::Cos, serial_of(Atom::Sym(x.clone())))
+}
+
+/// The id of `sin c` for a rational constant angle `c > 0` (its partner is `cos c`).
+pub fn sin_const(c: &super::number::Rational) -> AtomId {
+    make(Class::Sin, serial_of(Atom::Other(Expr::num(c.clone()))))
+}
+
+/// The id of `cos c` for a rational constant angle `c > 0`.
+pub fn cos_const(c: &super::number::Rational) -> AtomId {
+    make(Class::Cos, serial_of(Atom::Other(Expr::num(c.clone()))))
 }
 
 /// The id of an opaque expression.
@@ -153,6 +167,8 @@ pub fn to_expr(id: AtomId) -> Expr {
     match (class(id), atom) {
         (Class::Sin, Atom::Sym(s)) => Expr::sin(&Expr::sym(s)),
         (Class::Cos, Atom::Sym(s)) => Expr::cos(&Expr::sym(s)),
+        (Class::Sin, Atom::Other(c)) => Expr::sin(&c),
+        (Class::Cos, Atom::Other(c)) => Expr::cos(&c),
         (_, Atom::Sym(s)) => Expr::sym(s),
         (_, Atom::Pi) => Expr::pi(),
         (_, Atom::Sqrt(k)) => Expr::sqrt(&Expr::num(k.into())).expect("positive radicand"),

@@ -123,10 +123,7 @@ mod tests {
     #[test]
     fn derivative_table() {
         let x = Expr::symbol("x");
-        let rows = [
-            (Func::Sin, Expr::cos(&x)),
-            (Func::Cos, -Expr::sin(&x)),
-        ];
+        let rows = [(Func::Sin, Expr::cos(&x)), (Func::Cos, -Expr::sin(&x))];
         for (f, want) in rows {
             assert_eq!(diff(&Expr::fun(f, &x), &Symbol::new("x")), want);
         }
@@ -137,10 +134,15 @@ mod tests {
         let m2 = Expr::symbol("m2");
         let lc2 = Expr::symbol("lc2");
         let e = &m2 * &lc2.pow(2).unwrap() * Expr::sin(&Expr::q(2)).pow(2).unwrap();
-        let want = Expr::int(2) * &m2 * lc2.pow(2).unwrap() * Expr::sin(&Expr::q(2)) * Expr::cos(&Expr::q(2));
+        let want = Expr::int(2)
+            * &m2
+            * lc2.pow(2).unwrap()
+            * Expr::sin(&Expr::q(2))
+            * Expr::cos(&Expr::q(2));
         assert_eq!(diff(&e, &Symbol::q(2)), want);
         let e = Expr::sin(&Expr::q(1)) * Expr::qd(2);
-        let want = Expr::cos(&Expr::q(1)) * Expr::qd(1) * Expr::qd(2) + Expr::sin(&Expr::q(1)) * Expr::qdd(2);
+        let want = Expr::cos(&Expr::q(1)) * Expr::qd(1) * Expr::qd(2)
+            + Expr::sin(&Expr::q(1)) * Expr::qdd(2);
         assert_eq!(dt(&e), want);
     }
 
@@ -150,6 +152,9 @@ mod tests {
             + Expr::sin(&Expr::q(2)).pow(3).unwrap();
         let p = to_poly(&e);
         assert!(equal(&poly_dt(&p).to_expr(), &dt(&e)));
-        assert!(equal(&poly_diff(&p, &Symbol::q(2)).to_expr(), &diff(&e, &Symbol::q(2))));
+        assert!(equal(
+            &poly_diff(&p, &Symbol::q(2)).to_expr(),
+            &diff(&e, &Symbol::q(2))
+        ));
     }
 }

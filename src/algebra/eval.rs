@@ -37,10 +37,12 @@ fn eval_unchecked(e: &Expr, values: &HashMap<Symbol, f64>) -> f64 {
         Kind::Num(r) => r.to_f64(),
         Kind::Sym(s) => values[s],
         Kind::Pi => std::f64::consts::PI,
-        Kind::Sqrt(k) => num_traits::ToPrimitive::to_f64(k).unwrap_or(f64::NAN).sqrt(),
-        Kind::Add(c, ts) => ts
-            .iter()
-            .fold(c.to_f64(), |acc, (t, k)| acc + k.to_f64() * eval_unchecked(t, values)),
+        Kind::Sqrt(k) => num_traits::ToPrimitive::to_f64(k)
+            .unwrap_or(f64::NAN)
+            .sqrt(),
+        Kind::Add(c, ts) => ts.iter().fold(c.to_f64(), |acc, (t, k)| {
+            acc + k.to_f64() * eval_unchecked(t, values)
+        }),
         Kind::Mul(c, fs) => fs.iter().fold(c.to_f64(), |acc, (b, k)| {
             acc * eval_unchecked(b, values).powi(*k as i32)
         }),
@@ -69,7 +71,10 @@ mod tests {
         let e = Expr::symbol("m") * Expr::cos(&Expr::q(1)) + Expr::frac(1, 3).unwrap();
         let vals = HashMap::from([(Symbol::new("m"), 2.0), (Symbol::q(1), 0.0)]);
         assert!((eval_f64(&e, &vals).unwrap() - (2.0 + 1.0 / 3.0)).abs() < 1e-15);
-        let exact = HashMap::from([(Symbol::new("m"), Expr::int(2)), (Symbol::q(1), Expr::zero())]);
+        let exact = HashMap::from([
+            (Symbol::new("m"), Expr::int(2)),
+            (Symbol::q(1), Expr::zero()),
+        ]);
         assert_eq!(eval_exact(&e, &exact).unwrap(), Expr::frac(7, 3).unwrap());
         let err = eval_f64(&e, &HashMap::new()).unwrap_err();
         assert_eq!(err.to_string(), "no value given for m, q1");

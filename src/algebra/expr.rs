@@ -85,7 +85,10 @@ impl Expr {
     fn make(kind: Kind) -> Expr {
         let mut h = std::collections::hash_map::DefaultHasher::new();
         kind.hash(&mut h);
-        Expr(Arc::new(Node { hash: h.finish(), kind }))
+        Expr(Arc::new(Node {
+            hash: h.finish(),
+            kind,
+        }))
     }
 
     /// The node's shape.
@@ -223,7 +226,9 @@ impl Expr {
                 let mut factors = Vec::with_capacity(fs.len() + 1);
                 factors.push(Expr::num(coeff));
                 for (b, k) in fs {
-                    let exp = k.checked_mul(e).ok_or_else(|| AlgebraError::TooLarge(format!("exponent {k}·{e}")))?;
+                    let exp = k
+                        .checked_mul(e)
+                        .ok_or_else(|| AlgebraError::TooLarge(format!("exponent {k}·{e}")))?;
                     factors.push(Expr::power_unchecked(b.clone(), exp));
                 }
                 Ok(Expr::product(factors))
@@ -570,10 +575,9 @@ fn cmp_base(a: &Expr, b: &Expr) -> Ordering {
             .then_with(|| super::symbol::natural_cmp(x, y)),
         (Kind::Sym(x), Kind::Sym(y)) => x.cmp(y),
         (Kind::Fun(f, x), Kind::Fun(g, y)) => x.cmp(y).then(f.cmp(g)),
-        (Kind::Add(c, xs), Kind::Add(d, ys)) => cmp_seq(xs, ys, |(s, k), (t, l)| {
-            s.cmp(t).then_with(|| k.cmp(l))
-        })
-        .then_with(|| c.cmp(d)),
+        (Kind::Add(c, xs), Kind::Add(d, ys)) => {
+            cmp_seq(xs, ys, |(s, k), (t, l)| s.cmp(t).then_with(|| k.cmp(l))).then_with(|| c.cmp(d))
+        }
         (Kind::Mul(c, xs), Kind::Mul(d, ys)) => cmp_factors(xs, ys).then_with(|| c.cmp(d)),
         _ => unreachable!("equal ranks have equal kinds"),
     }
@@ -591,7 +595,9 @@ fn cmp_seq<T>(xs: &[T], ys: &[T], f: impl Fn(&T, &T) -> Ordering) -> Ordering {
 
 /// Factor lists compare base by base; for an equal base the higher power comes first.
 fn cmp_factors(xs: &[(Expr, i64)], ys: &[(Expr, i64)]) -> Ordering {
-    cmp_seq(xs, ys, |(a, i), (b, j)| cmp_base(a, b).then_with(|| j.cmp(i)))
+    cmp_seq(xs, ys, |(a, i), (b, j)| {
+        cmp_base(a, b).then_with(|| j.cmp(i))
+    })
 }
 
 impl Ord for Expr {
@@ -625,7 +631,8 @@ impl PartialOrd for Expr {
 
 impl PartialEq for Expr {
     fn eq(&self, other: &Self) -> bool {
-        Arc::ptr_eq(&self.0, &other.0) || (self.0.hash == other.0.hash && self.0.kind == other.0.kind)
+        Arc::ptr_eq(&self.0, &other.0)
+            || (self.0.hash == other.0.hash && self.0.kind == other.0.kind)
     }
 }
 
@@ -777,7 +784,10 @@ mod tests {
         assert_eq!(&x() * &(&x() * &y()), &x().pow(2).unwrap() * &y());
         assert!(x().div(&x()).unwrap().is_one());
         // 5
-        assert_eq!(&Expr::int(2) * &(&x() + &y()), &(&Expr::int(2) * &x()) + &(&Expr::int(2) * &y()));
+        assert_eq!(
+            &Expr::int(2) * &(&x() + &y()),
+            &(&Expr::int(2) * &x()) + &(&Expr::int(2) * &y())
+        );
         // 6
         assert_eq!(&x() + &Expr::zero(), x());
         assert_eq!(Expr::product([x().pow(1).unwrap(), Expr::one()]), x());

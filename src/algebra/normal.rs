@@ -39,7 +39,7 @@ pub fn to_poly(e: &Expr) -> Poly {
             }
             acc
         }
-        Kind::Fun(f, a) => trig(*f, e, a),
+        Kind::Fun(f, a) => trig(*f, a),
     }
 }
 
@@ -69,7 +69,12 @@ fn inverse_power(b: &Expr, k: u32) -> Poly {
         return Poly::atom(atom::other(&opaque));
     }
     if let [(m, c)] = p.terms() {
-        let mono = Mono::from_sorted(m.factors().iter().map(|&(id, e)| (id, -e * k as i32)).collect());
+        let mono = Mono::from_sorted(
+            m.factors()
+                .iter()
+                .map(|&(id, e)| (id, -e * k as i32))
+                .collect(),
+        );
         let coeff = c.pow(-(k as i64)).expect("non-zero coefficient");
         return Poly::term(mono, coeff);
     }
@@ -81,7 +86,10 @@ fn inverse_power(b: &Expr, k: u32) -> Poly {
         .unwrap_or_else(Rational::one);
     let monic = p.scale(&lead.recip().expect("non-zero leading coefficient"));
     let id = atom::other(&monic.to_expr());
-    Poly::term(Mono::atom(id, -(k as i32)), lead.pow(-(k as i64)).expect("non-zero"))
+    Poly::term(
+        Mono::atom(id, -(k as i32)),
+        lead.pow(-(k as i64)).expect("non-zero"),
+    )
 }
 
 /// An argument `Σ nᵢ xᵢ + c + r π` with integer `nᵢ`, if the argument has that form.
@@ -114,6 +122,38 @@ fn linear_form(p: &Poly) -> Option<Linear> {
     })
 }
 
+/// `(sin K, cos K)` for a constant angle `K = c + r π`: `sin c`, `cos c` are a related atom pair
+/// (for `c != 0`), `sin r π`, `cos r π` exact values or opaque atoms.
+fn constant_angle(k: &Expr) -> (Poly, Poly) {
+    let mut c = Rational::zero();
+    let mut rest = Vec::new();
+    for (t, coeff) in k.terms() {
+        if t.is_one() {
+            c = coeff;
+        } else {
+            rest.push(t.scale(&coeff));
+        }
+    }
+    let pi_part = Expr::sum(rest);
+    let (sr, cr) = if pi_part.is_zero() {
+        (Poly::zero(), Poly::one())
+    } else {
+        (to_poly(&Expr::sin(&pi_part)), to_poly(&Expr::cos(&pi_part)))
+    };
+    if c.is_zero() {
+        return (sr, cr);
+    }
+    let sign = if c.is_negative() {
+        Rational::int(-1)
+    } else {
+        Rational::one()
+    };
+    let c = c.abs();
+    let sc = Poly::atom(atom::sin_const(&c)).scale(&sign);
+    let cc = Poly::atom(atom::cos_const(&c));
+    (sc.mul(&cr).add(&cc.mul(&sr)), cc.mul(&cr).sub(&sc.mul(&sr)))
+}
+
 /// `(sin n x, cos n x)` as polynomials in `sin x`, `cos x`.
 fn multiple_angle(x: &Symbol, n: i64) -> (Poly, Poly) {
     let s = Poly::atom(atom::sin(x));
@@ -131,7 +171,7 @@ fn multiple_angle(x: &Symbol, n: i64) -> (Poly, Poly) {
     (sn, cn)
 }
 
-fn trig(f: Func, whole: &Expr, arg: &Expr) -> Poly {
+fn trig(f: Func, arg: &Expr) -> Poly {
     let p = to_poly(arg);
     let Some(lin) = linear_form(&p) else {
         // Outside the contract: keep it whole, with its argument in normal form.
@@ -142,16 +182,13 @@ fn trig(f: Func, whole: &Expr, arg: &Expr) -> Poly {
         };
     };
     if lin.terms.is_empty() {
-        return Poly::atom(atom::other(whole));
+        let (s, c) = constant_angle(&lin.constant);
+        return match f {
+            Func::Sin => s,
+            Func::Cos => c,
+        };
     }
-    let (mut s, mut c) = if lin.constant.is_zero() {
-        (Poly::zero(), Poly::one())
-    } else {
-        (
-            to_poly(&Expr::sin(&lin.constant)),
-            to_poly(&Expr::cos(&lin.constant)),
-        )
-    };
+    let (mut s, mut c) = constant_angle(&lin.constant);
     for (x, n) in &lin.terms {
         let (sn, cn) = multiple_angle(x, *n);
         let next_s = s.mul(&cn).add(&c.mul(&sn));
@@ -193,6 +230,17 @@ mod tests {
     fn not_equal_is_not_zero() {
         assert!(!is_zero(&(Expr::sin(&q(1)) - Expr::cos(&q(1)))));
         assert!(!is_zero(&(Expr::sin(&q(1)).pow(2).unwrap() - Expr::one())));
+    }
+
+    #[test]
+    fn constant_angles_obey_pythagoras() {
+        let one = Expr::one();
+        let e = Expr::sin(&one).pow(2).unwrap() + Expr::cos(&-one.clone()).pow(2).unwrap();
+        assert!(normal_form(&e).is_one());
+        let shifted = Expr::sin(&(q(1) + Expr::frac(2, 3).unwrap()));
+        let expanded = Expr::sin(&q(1)) * Expr::cos(&Expr::frac(2, 3).unwrap())
+            + Expr::cos(&q(1)) * Expr::sin(&Expr::frac(2, 3).unwrap());
+        assert!(equal(&shifted, &expanded));
     }
 
     #[test]

@@ -70,7 +70,10 @@ impl Rational {
         }
         match (i64::try_from(n), i64::try_from(d)) {
             (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
-            _ => Rational(Repr::Big(BigRational::new(BigInt::from(n), BigInt::from(d)))),
+            _ => Rational(Repr::Big(BigRational::new(
+                BigInt::from(n),
+                BigInt::from(d),
+            ))),
         }
     }
 
@@ -245,7 +248,11 @@ impl Rational {
         if int_part.is_empty() && frac_part.is_empty() {
             return None;
         }
-        if !int_part.bytes().chain(frac_part.bytes()).all(|b| b.is_ascii_digit()) {
+        if !int_part
+            .bytes()
+            .chain(frac_part.bytes())
+            .all(|b| b.is_ascii_digit())
+        {
             return None;
         }
         let digits = format!("{int_part}{frac_part}");
@@ -326,16 +333,27 @@ macro_rules! binop {
 binop!(
     Add,
     add,
-    |a, b, c, d| Some((a.checked_mul(d)?.checked_add(c.checked_mul(b)?)?, b.checked_mul(d)?)),
+    |a, b, c, d| Some((
+        a.checked_mul(d)?.checked_add(c.checked_mul(b)?)?,
+        b.checked_mul(d)?
+    )),
     |x, y| x + y
 );
 binop!(
     Sub,
     sub,
-    |a, b, c, d| Some((a.checked_mul(d)?.checked_sub(c.checked_mul(b)?)?, b.checked_mul(d)?)),
+    |a, b, c, d| Some((
+        a.checked_mul(d)?.checked_sub(c.checked_mul(b)?)?,
+        b.checked_mul(d)?
+    )),
     |x, y| x - y
 );
-binop!(Mul, mul, |a, b, c, d| Some((a.checked_mul(c)?, b.checked_mul(d)?)), |x, y| x * y);
+binop!(
+    Mul,
+    mul,
+    |a, b, c, d| Some((a.checked_mul(c)?, b.checked_mul(d)?)),
+    |x, y| x * y
+);
 
 impl std::ops::Neg for &Rational {
     type Output = Rational;
@@ -437,7 +455,13 @@ mod tests {
     fn powers_and_square_parts() {
         assert_eq!(r(2, 3).pow(-2), Some(r(9, 4)));
         assert_eq!(Rational::zero().pow(-1), None);
-        assert_eq!(split_square(&BigInt::from(12)), (BigInt::from(2), BigInt::from(3)));
-        assert_eq!(split_square(&BigInt::from(2)), (BigInt::from(1), BigInt::from(2)));
+        assert_eq!(
+            split_square(&BigInt::from(12)),
+            (BigInt::from(2), BigInt::from(3))
+        );
+        assert_eq!(
+            split_square(&BigInt::from(2)),
+            (BigInt::from(1), BigInt::from(2))
+        );
     }
 }

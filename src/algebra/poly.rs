@@ -133,22 +133,20 @@ fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
         return;
     }
     // Surds first: they only change the coefficient and at most one atom.
-    let surds: Vec<(AtomId, i32)> = m
-        .0
-        .iter()
-        .copied()
-        .filter(|&(id, _)| atom::class(id) == Class::Sqrt)
-        .collect();
+    let surds: Vec<(AtomId, i32)> =
+        m.0.iter()
+            .copied()
+            .filter(|&(id, _)| atom::class(id) == Class::Sqrt)
+            .collect();
     let surd_bad = surds.len() > 1 || surds.iter().any(|&(_, e)| e != 1);
     if surd_bad {
         let mut coeff = coeff;
         let mut radicand = BigInt::one();
-        let mut rest: Vec<(AtomId, i32)> = m
-            .0
-            .iter()
-            .copied()
-            .filter(|&(id, _)| atom::class(id) != Class::Sqrt)
-            .collect();
+        let mut rest: Vec<(AtomId, i32)> =
+            m.0.iter()
+                .copied()
+                .filter(|&(id, _)| atom::class(id) != Class::Sqrt)
+                .collect();
         for (id, e) in surds {
             let atom::Atom::Sqrt(k) = atom::lookup(id) else {
                 unreachable!("class Sqrt holds a surd")
@@ -170,19 +168,22 @@ fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
         return;
     }
     // sin^e x = sin^(e mod 2) x · (1 − cos² x)^(e div 2)
-    let (sin_id, e) = m
-        .0
-        .iter()
-        .copied()
-        .find(|&(id, e)| atom::class(id) == Class::Sin && e >= 2)
-        .expect("needs_reduction found one");
+    let (sin_id, e) =
+        m.0.iter()
+            .copied()
+            .find(|&(id, e)| atom::class(id) == Class::Sin && e >= 2)
+            .expect("needs_reduction found one");
     let cos_id = atom::partner(sin_id);
     let n = e / 2;
     let base = m.with(sin_id, e % 2);
     let cos_e = base.exponent(cos_id);
     let mut binom = Rational::one();
     for k in 0..=n {
-        let sign = if k % 2 == 0 { Rational::one() } else { Rational::int(-1) };
+        let sign = if k % 2 == 0 {
+            Rational::one()
+        } else {
+            Rational::int(-1)
+        };
         let term = base.with(cos_id, cos_e + 2 * k);
         reduce(term, &(&coeff * &binom) * &sign, out);
         // C(n, k+1) = C(n, k) (n − k)/(k + 1)

@@ -62,7 +62,10 @@ impl Symbol {
         } else {
             (0, rest)
         };
-        if digits.is_empty() || digits.starts_with('0') || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        if digits.is_empty()
+            || digits.starts_with('0')
+            || !digits.bytes().all(|b| b.is_ascii_digit())
+        {
             return None;
         }
         let index: u32 = digits.parse().ok()?;
@@ -118,8 +121,14 @@ pub fn natural_cmp(a: &str, b: &str) -> Ordering {
                 let n = x.iter().take_while(|b| b.is_ascii_digit()).count();
                 let m = y.iter().take_while(|b| b.is_ascii_digit()).count();
                 let (dx, dy) = (&x[..n], &y[..m]);
-                let tx = dx.iter().position(|&b| b != b'0').map_or(&dx[n..], |i| &dx[i..]);
-                let ty = dy.iter().position(|&b| b != b'0').map_or(&dy[m..], |i| &dy[i..]);
+                let tx = dx
+                    .iter()
+                    .position(|&b| b != b'0')
+                    .map_or(&dx[n..], |i| &dx[i..]);
+                let ty = dy
+                    .iter()
+                    .position(|&b| b != b'0')
+                    .map_or(&dy[m..], |i| &dy[i..]);
                 let ord = tx.len().cmp(&ty.len()).then_with(|| tx.cmp(ty));
                 if ord != Ordering::Equal {
                     return ord;

@@ -153,7 +153,12 @@ mod tests {
             (Func::Sin, (4, 1), Expr::zero()),
         ];
         for (f, (n, d), want) in rows {
-            assert_eq!(Expr::fun(f, &pi_times(n, d)), want, "{}({n}/{d} pi)", f.name());
+            assert_eq!(
+                Expr::fun(f, &pi_times(n, d)),
+                want,
+                "{}({n}/{d} pi)",
+                f.name()
+            );
         }
     }
 

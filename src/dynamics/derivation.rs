@@ -1,0 +1,123 @@
+//! One robot's derivation: the kinematics, Euler–Lagrange and both Newton–Euler variants, each computed
+//! on first use and kept, so no caller has to know an order of calls.
+
+use super::facts::{Fact, Warning};
+use super::kinematics::Kinematics;
+use super::lagrange::Lagrange;
+use super::model::{JointKind, ModelError, Robot};
+use super::ne_symbolic::{self, Frame};
+use super::newton_euler::NewtonEuler;
+use crate::algebra::{Expr, Poly, Symbol};
+use std::sync::OnceLock;
+
+/// A robot and everything derived from it.
+#[derive(Debug)]
+pub struct Derivation {
+    robot: Robot,
+    kin: Kinematics,
+    lagrange: OnceLock<Lagrange>,
+    ne_body: OnceLock<NewtonEuler<Poly>>,
+    ne_inertial: OnceLock<NewtonEuler<Poly>>,
+}
+
+/// One equation of motion: `lhs = input`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equation {
+    /// The left side, `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k` in normal form.
+    pub lhs: Expr,
+    /// The actuated input's name.
+    pub input: String,
+}
+
+impl Derivation {
+    /// Validates the robot and computes its kinematics.
+    pub fn new(robot: Robot) -> Result<Derivation, ModelError> {
+        robot.validate()?;
+        let kin = Kinematics::new(&robot);
+        Ok(Derivation {
+            robot,
+            kin,
+            lagrange: OnceLock::new(),
+            ne_body: OnceLock::new(),
+            ne_inertial: OnceLock::new(),
+        })
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+
+    /// The kinematics.
+    pub fn kinematics(&self) -> &Kinematics {
+        &self.kin
+    }
+
+    /// The Euler–Lagrange quantities.
+    pub fn lagrange(&self) -> &Lagrange {
+        self.lagrange
+            .get_or_init(|| Lagrange::derive(&self.robot, &self.kin))
+    }
+
+    /// The Newton–Euler quantities in `frame`.
+    pub fn newton_euler(&self, frame: Frame) -> &NewtonEuler<Poly> {
+        let cell = match frame {
+            Frame::Body => &self.ne_body,
+            Frame::Inertial => &self.ne_inertial,
+        };
+        cell.get_or_init(|| ne_symbolic::derive(&self.robot, &self.kin, frame))
+    }
+
+    /// The structural facts of this robot (known before deriving, plus `D(q)` constant once derived by
+    /// Euler–Lagrange).
+    pub fn facts(&self) -> Vec<Fact> {
+        let mut facts = Vec::new();
+        if self
+            .robot
+            .joints
+            .iter()
+            .all(|j| j.kind == JointKind::Prismatic)
+        {
+            facts.push(Fact::PrismaticOnly);
+        } else {
+            let still: Vec<usize> = (0..self.robot.dof())
+                .filter(|&i| !self.kin.rotates[i])
+                .map(|i| i + 1)
+                .collect();
+            if !still.is_empty() {
+                facts.push(Fact::NonRotatingLinks(still));
+            }
+        }
+        facts.extend(self.lagrange().facts.iter().cloned());
+        facts
+    }
+
+    /// Warnings about the scene: inertia given for links that never rotate.
+    pub fn warnings(&self) -> Vec<Warning> {
+        (0..self.robot.dof())
+            .filter(|&i| !self.kin.rotates[i] && self.robot.links[i].inertia.is_some())
+            .map(|i| Warning::UnusedInertia { link: i + 1 })
+            .collect()
+    }
+
+    /// The equations of motion from the Euler–Lagrange left sides.
+    pub fn equations(&self) -> Vec<Equation> {
+        self.equations_from(&self.lagrange().tau)
+    }
+
+    /// Equations from given left sides (Euler–Lagrange or Newton–Euler `τ`).
+    pub fn equations_from(&self, tau: &[Poly]) -> Vec<Equation> {
+        tau.iter()
+            .zip(&self.robot.inputs)
+            .map(|(t, u)| Equation {
+                lhs: t.to_expr(),
+                input: u.clone(),
+            })
+            .collect()
+    }
+
+    /// The generalised coordinates `q1..qn`.
+    pub fn coordinates(&self) -> Vec<Symbol> {
+        (1..=self.robot.dof() as u32).map(Symbol::q).collect()
+    }
+}

@@ -1,0 +1,194 @@
+//! The Euler–Lagrange equations (Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, §7.3–7.4).
+//!
+//! - `D(q) = Σ_i m_i J_v,iᵀ J_v,i + J_ω,iᵀ R_i I_i R_iᵀ J_ω,i` (the rotational term only for links that
+//!   rotate);
+//! - Christoffel symbols `c_ijk = ½ (∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)` (none computed when `D` is
+//!   constant);
+//! - `C(q, q̇)` with `c_kj = Σ_i c_ijk q̇_i`;
+//! - `P = −Σ_i m_i gᵀ p_ci` with `g` the gravity vector in frame 0, and `g_k = ∂P/∂q_k`;
+//! - the equations `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k = τ_k`.
+//!
+//! Indices in the API are 0-based (`d[k][j]` is `d_{k+1, j+1}`); printers add one.
+
+use super::facts::Fact;
+use super::kinematics::Kinematics;
+use super::model::Robot;
+use super::vec3::{Mat3, Vec3};
+use crate::algebra::calculus::poly_diff;
+use crate::algebra::{to_poly, Poly, Rational, Symbol};
+
+/// Every quantity of the Euler–Lagrange derivation.
+#[derive(Clone, Debug)]
+pub struct Lagrange {
+    /// `D(q)`, symmetric.
+    pub d: Vec<Vec<Poly>>,
+    /// Whether `D` is constant (then every Christoffel symbol is zero and was not computed).
+    pub d_constant: bool,
+    /// `c[i][j][k] = c_ijk`, symmetric in `i, j`.
+    pub christoffel: Vec<Vec<Vec<Poly>>>,
+    /// `C(q, q̇)`.
+    pub c: Vec<Vec<Poly>>,
+    /// The potential energy `P`.
+    pub p: Poly,
+    /// `g(q) = ∂P/∂q`.
+    pub g: Vec<Poly>,
+    /// The kinetic energy `K = ½ q̇ᵀ D q̇`.
+    pub k: Poly,
+    /// The left side of equation `k`: `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k`.
+    pub tau: Vec<Poly>,
+    /// The structural facts used.
+    pub facts: Vec<Fact>,
+}
+
+fn is_constant(p: &Poly) -> bool {
+    use crate::algebra::atom::{class, Class};
+    p.atoms().iter().all(|&id| match class(id) {
+        Class::Coord => false,
+        Class::Sin | Class::Cos => {
+            crate::algebra::atom::symbol_of(id).is_none_or(|s| !s.is_coord())
+        }
+        Class::Other => false,
+        _ => true,
+    })
+}
+
+fn quad(u: &Vec3<Poly>, m: &Mat3<Poly>, v: &Vec3<Poly>) -> Poly {
+    u.dot(&m.mul_vec(v))
+}
+
+impl Lagrange {
+    /// Derives the Euler–Lagrange quantities from the robot and its kinematics.
+    pub fn derive(robot: &Robot, kin: &Kinematics) -> Lagrange {
+        let n = robot.dof();
+        let mut facts = Vec::new();
+        // R_i I_i R_iᵀ for the links that rotate and have an inertia.
+        let inertia0: Vec<Option<Mat3<Poly>>> = (0..n)
+            .map(|i| {
+                let tensor = robot.links[i].inertia.as_ref()?;
+                if !kin.rotates[i] {
+                    return None;
+                }
+                let local = Mat3(std::array::from_fn(|r| {
+                    std::array::from_fn(|c| to_poly(&tensor[r][c]))
+                }));
+                let r = &kin.rot0[i + 1];
+                Some(r.mul(&local).mul(&r.transpose()))
+            })
+            .collect();
+        let masses: Vec<Poly> = robot.links.iter().map(|l| to_poly(&l.mass)).collect();
+        let mut d = vec![vec![Poly::zero(); n]; n];
+        for k in 0..n {
+            for j in k..n {
+                let mut parts = Vec::new();
+                for i in 0..n {
+                    let (jk, jj) = (&kin.jv[i][k], &kin.jv[i][j]);
+                    if !jk.is_exact_zero() && !jj.is_exact_zero() {
+                        parts.push(masses[i].mul(&jk.dot(jj)));
+                    }
+                    if let Some(i0) = &inertia0[i] {
+                        let (wk, wj) = (&kin.jw[i][k], &kin.jw[i][j]);
+                        if !wk.is_exact_zero() && !wj.is_exact_zero() {
+                            parts.push(quad(wk, i0, wj));
+                        }
+                    }
+                }
+                let entry = Poly::sum(&parts);
+                d[j][k] = entry.clone();
+                d[k][j] = entry;
+            }
+        }
+        let d_constant = d.iter().flatten().all(is_constant);
+        let qs: Vec<Symbol> = (1..=n as u32).map(Symbol::q).collect();
+        let qds: Vec<Poly> = (1..=n as u32)
+            .map(|i| Poly::symbol(&Symbol::qd(i)))
+            .collect();
+        let qdds: Vec<Poly> = (1..=n as u32)
+            .map(|i| Poly::symbol(&Symbol::qdd(i)))
+            .collect();
+        let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
+        if d_constant {
+            facts.push(Fact::ConstantMassMatrix);
+        } else {
+            // ∂D/∂q_i, only for the q_i that D depends on.
+            let dd: Vec<Vec<Vec<Poly>>> = qs
+                .iter()
+                .map(|q| {
+                    d.iter()
+                        .map(|row| row.iter().map(|e| poly_diff(e, q)).collect())
+                        .collect()
+                })
+                .collect();
+            let half = Rational::new(1, 2).expect("non-zero");
+            for i in 0..n {
+                for j in i..n {
+                    for k in 0..n {
+                        let c = dd[i][k][j].add(&dd[j][k][i]).sub(&dd[k][i][j]).scale(&half);
+                        christoffel[j][i][k] = c.clone();
+                        christoffel[i][j][k] = c;
+                    }
+                }
+            }
+        }
+        let c: Vec<Vec<Poly>> = (0..n)
+            .map(|k| {
+                (0..n)
+                    .map(|j| {
+                        let parts: Vec<Poly> =
+                            (0..n).map(|i| christoffel[i][j][k].mul(&qds[i])).collect();
+                        Poly::sum(&parts)
+                    })
+                    .collect()
+            })
+            .collect();
+        let gravity: Vec3<Poly> = Vec3(std::array::from_fn(|k| to_poly(&robot.gravity[k])));
+        let p_parts: Vec<Poly> = (0..n)
+            .map(|i| masses[i].mul(&gravity.dot(&kin.com0[i])).neg())
+            .collect();
+        let p = Poly::sum(&p_parts);
+        let g: Vec<Poly> = qs.iter().map(|q| poly_diff(&p, q)).collect();
+        let k_parts: Vec<Poly> = (0..n)
+            .flat_map(|a| {
+                let d = &d;
+                let qds = &qds;
+                (0..n).map(move |b| d[a][b].mul(&qds[a]).mul(&qds[b]))
+            })
+            .collect();
+        let k = Poly::sum(&k_parts).scale(&Rational::new(1, 2).expect("non-zero"));
+        let tau = (0..n)
+            .map(|k| {
+                let mut parts: Vec<Poly> = (0..n).map(|j| d[k][j].mul(&qdds[j])).collect();
+                parts.extend((0..n).map(|j| c[k][j].mul(&qds[j])));
+                parts.push(g[k].clone());
+                Poly::sum(&parts)
+            })
+            .collect();
+        Lagrange {
+            d,
+            d_constant,
+            christoffel,
+            c,
+            p,
+            g,
+            k,
+            tau,
+            facts,
+        }
+    }
+
+    /// The non-zero Christoffel symbols `(i, j, k, c_ijk)`, 1-based, in index order.
+    pub fn nonzero_christoffel(&self) -> Vec<(usize, usize, usize, &Poly)> {
+        let n = self.d.len();
+        let mut out = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    let c = &self.christoffel[i][j][k];
+                    if !c.is_zero() {
+                        out.push((i + 1, j + 1, k + 1, c));
+                    }
+                }
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,26 @@
+//! The dynamics layer: robots, their kinematics, and the equations of motion by Euler–Lagrange and by
+//! Newton–Euler (Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, ch. 7).
+//!
+//! - [`model`]: the robot as a scene states it; [`inertia`]: shapes and the parallel-axis theorem.
+//! - [`kinematics`]: transforms, centres of mass, Jacobians.
+//! - [`lagrange`]: `D`, `c_ijk`, `C`, `P`, `g`, the equations.
+//! - [`newton_euler`] (generic over the scalar) and [`ne_symbolic`] (its exact inputs, body or inertial).
+//! - [`facts`]: what is structurally zero; [`derivation`]: one robot's results, computed on demand.
+//! - [`check`]: the proofs; [`numeric`]: an independent `f64` inverse dynamics for cross-checks.
+
+pub mod check;
+pub mod derivation;
+pub mod facts;
+pub mod inertia;
+pub mod kinematics;
+pub mod lagrange;
+pub mod model;
+pub mod ne_symbolic;
+pub mod newton_euler;
+pub mod numeric;
+pub mod scalar;
+pub mod vec3;
+
+pub use derivation::{Derivation, Equation};
+pub use model::{Convention, Joint, JointKind, Link, Robot};
+pub use ne_symbolic::Frame;

@@ -1,0 +1,301 @@
+//! The robot model: what a scene states, and nothing computed from it.
+//!
+//! A serial chain of `n` joints in Denavit–Hartenberg form (Spong, Hutchinson and Vidyasagar, *Robot
+//! Modeling and Control*, ch. 3 for standard DH; Craig for modified DH), one rigid link per joint with
+//! its mass, centre of mass and inertia tensor, the gravity vector in frame 0, and the names of the
+//! actuated inputs. Every quantity is an exact [`Expr`]; the joint variable of joint `i` is `q_i`.
+
+use crate::algebra::{diff, Expr, Symbol};
+use thiserror::Error;
+
+/// Revolute (rotates about its axis) or prismatic (slides along it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// `θ_i` holds `q_i`.
+    Revolute,
+    /// `d_i` holds `q_i`.
+    Prismatic,
+}
+
+impl JointKind {
+    /// `revolute` or `prismatic`.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::Revolute => "revolute",
+            JointKind::Prismatic => "prismatic",
+        }
+    }
+}
+
+/// The DH convention of the table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Convention {
+    /// `A_i = Rot(z,θ_i) Trans(z,d_i) Trans(x,a_i) Rot(x,α_i)` (Spong); joint `i` acts about `z_{i−1}`.
+    Standard,
+    /// `A_i = Rot(x,α_{i−1}) Trans(x,a_{i−1}) Rot(z,θ_i) Trans(z,d_i)` (Craig, Khalil); the row of joint
+    /// `i` holds `a_{i−1}` and `α_{i−1}`; joint `i` acts about `z_i`.
+    Modified,
+}
+
+/// One row of the DH table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// Revolute or prismatic.
+    pub kind: JointKind,
+    /// Link length `a` (length).
+    pub a: Expr,
+    /// Link twist `α` (radians).
+    pub alpha: Expr,
+    /// Link offset `d` (length); holds `q_i` for a prismatic joint.
+    pub d: Expr,
+    /// Joint angle `θ` (radians); holds `q_i` for a revolute joint.
+    pub theta: Expr,
+}
+
+/// A link's inertial data, in link frame `i`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// Mass `m_i`.
+    pub mass: Expr,
+    /// Centre of mass `r_{i,ci}` in frame `i`, from the origin `o_i`.
+    pub com: [Expr; 3],
+    /// Inertia tensor `I_i` about the centre of mass, in frame `i`; `None` for a point mass.
+    pub inertia: Option<[[Expr; 3]; 3]>,
+}
+
+/// A serial manipulator.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Robot {
+    /// A display name.
+    pub name: String,
+    /// The gravitational acceleration in frame 0 (e.g. `[0, 0, −g]`).
+    pub gravity: [Expr; 3],
+    /// The DH convention.
+    pub convention: Convention,
+    /// The joints, joint `i` at index `i − 1`.
+    pub joints: Vec<Joint>,
+    /// The links, link `i` at index `i − 1`.
+    pub links: Vec<Link>,
+    /// Names of the actuated forces/torques, one per joint.
+    pub inputs: Vec<String>,
+}
+
+/// A DH field of a joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Field {
+    /// `a`.
+    A,
+    /// `alpha`.
+    Alpha,
+    /// `d`.
+    D,
+    /// `theta`.
+    Theta,
+}
+
+impl Field {
+    /// The name used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Field::A => "a",
+            Field::Alpha => "alpha",
+            Field::D => "d",
+            Field::Theta => "theta",
+        }
+    }
+}
+
+/// What is wrong with a model.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum ModelError {
+    /// A robot needs at least one joint.
+    #[error("the robot has no joints")]
+    NoJoints,
+    /// Links and joints must pair up.
+    #[error("{links} links for {joints} joints: every joint needs exactly one link")]
+    LinkCount {
+        /// Joints.
+        joints: usize,
+        /// Links.
+        links: usize,
+    },
+    /// The joint variable is missing from the field that must hold it.
+    #[error("joint {joint} is {kind}, so its `{field}` must contain q{joint}")]
+    MissingVariable {
+        /// Joint index.
+        joint: usize,
+        /// Joint kind name.
+        kind: &'static str,
+        /// Field name.
+        field: &'static str,
+    },
+    /// A coordinate appears where it does not belong.
+    #[error("joint {joint}: `{field}` contains {var}, but {reason}")]
+    MisplacedVariable {
+        /// Joint index.
+        joint: usize,
+        /// Field name.
+        field: &'static str,
+        /// The coordinate's name.
+        var: String,
+        /// Why it may not be there.
+        reason: String,
+    },
+    /// The joint variable must enter linearly with a constant, non-zero rate.
+    #[error("joint {joint}: `{field}` must be q{joint} times a constant plus a constant (such as `q{joint} + pi/2`)")]
+    NonlinearVariable {
+        /// Joint index.
+        joint: usize,
+        /// Field name.
+        field: &'static str,
+    },
+    /// A non-joint quantity depends on the coordinates.
+    #[error("{what} must not depend on the joint variables, but contains {var}")]
+    TimeDependentParameter {
+        /// Which quantity.
+        what: String,
+        /// The coordinate's name.
+        var: String,
+    },
+    /// Wrong number of input names.
+    #[error("{names} input names for {joints} joints")]
+    InputCount {
+        /// Names given.
+        names: usize,
+        /// Joints.
+        joints: usize,
+    },
+}
+
+fn first_coord(e: &Expr) -> Option<Symbol> {
+    e.symbols().into_iter().find(Symbol::is_coord)
+}
+
+/// Checks one joint row: the variable `q_i` sits in `θ` (revolute) or `d` (prismatic), linearly with a
+/// constant rate, and nowhere else; no derivative `q̇`, `q̈` anywhere. Returns the offending field.
+pub fn check_joint(index: usize, joint: &Joint) -> Result<(), (Field, ModelError)> {
+    let own = Symbol::q(index as u32);
+    let var_field = match joint.kind {
+        JointKind::Revolute => Field::Theta,
+        JointKind::Prismatic => Field::D,
+    };
+    for (field, e) in [
+        (Field::A, &joint.a),
+        (Field::Alpha, &joint.alpha),
+        (Field::D, &joint.d),
+        (Field::Theta, &joint.theta),
+    ] {
+        for s in e.symbols().into_iter().filter(Symbol::is_coord) {
+            let reason = if let Symbol::Coord { order, .. } = s {
+                if order > 0 {
+                    Some("a DH table holds positions, not velocities or accelerations".to_string())
+                } else if s != own {
+                    Some(format!(
+                        "joint {index} can only depend on its own variable q{index}"
+                    ))
+                } else if field != var_field {
+                    Some(format!(
+                        "a {} joint's variable belongs in `{}`",
+                        joint.kind.name(),
+                        var_field.name()
+                    ))
+                } else {
+                    None
+                }
+            } else {
+                None
+            };
+            if let Some(reason) = reason {
+                return Err((
+                    field,
+                    ModelError::MisplacedVariable {
+                        joint: index,
+                        field: field.name(),
+                        var: s.ascii_name(),
+                        reason,
+                    },
+                ));
+            }
+        }
+    }
+    let var_expr = match joint.kind {
+        JointKind::Revolute => &joint.theta,
+        JointKind::Prismatic => &joint.d,
+    };
+    if !var_expr.contains(&own) {
+        return Err((
+            var_field,
+            ModelError::MissingVariable {
+                joint: index,
+                kind: joint.kind.name(),
+                field: var_field.name(),
+            },
+        ));
+    }
+    let rate = diff(var_expr, &own);
+    if first_coord(&rate).is_some() || crate::algebra::is_zero(&rate) {
+        return Err((
+            var_field,
+            ModelError::NonlinearVariable {
+                joint: index,
+                field: var_field.name(),
+            },
+        ));
+    }
+    Ok(())
+}
+
+impl Robot {
+    /// The number of joints.
+    pub fn dof(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// Checks the model's invariants (see [`check_joint`]); masses, centres of mass, inertias and
+    /// gravity must be constant.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        if self.joints.is_empty() {
+            return Err(ModelError::NoJoints);
+        }
+        if self.links.len() != self.joints.len() {
+            return Err(ModelError::LinkCount {
+                joints: self.joints.len(),
+                links: self.links.len(),
+            });
+        }
+        if self.inputs.len() != self.joints.len() {
+            return Err(ModelError::InputCount {
+                names: self.inputs.len(),
+                joints: self.joints.len(),
+            });
+        }
+        for (i, j) in self.joints.iter().enumerate() {
+            check_joint(i + 1, j).map_err(|(_, e)| e)?;
+        }
+        let constant = |what: String, e: &Expr| match first_coord(e) {
+            Some(s) => Err(ModelError::TimeDependentParameter {
+                what,
+                var: s.ascii_name(),
+            }),
+            None => Ok(()),
+        };
+        for g in &self.gravity {
+            constant("gravity".into(), g)?;
+        }
+        for (i, l) in self.links.iter().enumerate() {
+            constant(format!("the mass of link {}", i + 1), &l.mass)?;
+            for c in &l.com {
+                constant(format!("the centre of mass of link {}", i + 1), c)?;
+            }
+            for e in l.inertia.iter().flatten().flatten() {
+                constant(format!("the inertia of link {}", i + 1), e)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The default input names `tau1..tauN`.
+    pub fn default_inputs(n: usize) -> Vec<String> {
+        (1..=n).map(|i| format!("tau{i}")).collect()
+    }
+}

@@ -1,0 +1,92 @@
+//! The inputs of the Newton–Euler recursion, built exactly from the kinematics, in body-fixed frames or
+//! in the inertial frame (the two variants of the worked solution, results (9)–(11) and (12)).
+
+use super::kinematics::Kinematics;
+use super::model::{JointKind, Robot};
+use super::newton_euler::{recurse, NewtonEuler, Step};
+use super::vec3::{Mat3, Vec3};
+use crate::algebra::{to_poly, Poly, Symbol};
+
+/// The frame the Newton–Euler quantities are written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Frame {
+    /// Each link's quantities in its own frame `i`.
+    Body,
+    /// Everything in the inertial frame 0.
+    Inertial,
+}
+
+impl Frame {
+    /// `body` or `inertial`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Frame::Body => "body",
+            Frame::Inertial => "inertial",
+        }
+    }
+}
+
+fn mat(t: &[[crate::algebra::Expr; 3]; 3]) -> Mat3<Poly> {
+    Mat3(std::array::from_fn(|r| {
+        std::array::from_fn(|c| to_poly(&t[r][c]))
+    }))
+}
+
+/// The recursion's steps for `robot` in `frame`.
+pub fn steps(robot: &Robot, kin: &Kinematics, frame: Frame) -> Vec<Step<Poly>> {
+    let g0 = Vec3(std::array::from_fn(|k| to_poly(&robot.gravity[k])));
+    (0..robot.dof())
+        .map(|i| {
+            let jf = &kin.joints[i];
+            let link = &robot.links[i];
+            let com = Vec3(std::array::from_fn(|k| to_poly(&link.com[k])));
+            let inertia = link.inertia.as_ref().filter(|_| kin.rotates[i]).map(mat);
+            let q = (i + 1) as u32;
+            let qd = jf.rate.mul(&Poly::symbol(&Symbol::qd(q)));
+            let qdd = jf.rate.mul(&Poly::symbol(&Symbol::qdd(q)));
+            let rel = jf.origin.sub(&jf.joint_point);
+            let (rot_in, axis, s, r_joint_origin, r_origin_com, inertia, gravity) = match frame {
+                Frame::Body => {
+                    let rt = jf.rot.transpose();
+                    let s = rt.mul_vec(&jf.joint_point);
+                    let r = rt.mul_vec(&rel);
+                    let g = kin.rot0[i + 1].tr_mul_vec(&g0);
+                    (rt, jf.axis_local.clone(), s, r, com, inertia, g)
+                }
+                Frame::Inertial => {
+                    let prev = &kin.rot0[i];
+                    let here = &kin.rot0[i + 1];
+                    let inertia = inertia.map(|t| here.mul(&t).mul(&here.transpose()));
+                    (
+                        Mat3::identity(),
+                        kin.axis0[i].clone(),
+                        prev.mul_vec(&jf.joint_point),
+                        prev.mul_vec(&rel),
+                        here.mul_vec(&com),
+                        inertia,
+                        g0.clone(),
+                    )
+                }
+            };
+            Step {
+                revolute: jf.kind == JointKind::Revolute,
+                rot_in,
+                axis,
+                s,
+                r_joint_origin,
+                r_origin_com,
+                mass: to_poly(&link.mass),
+                inertia,
+                gravity,
+                qd,
+                qdd,
+                rate: jf.rate.clone(),
+            }
+        })
+        .collect()
+}
+
+/// The exact Newton–Euler quantities of `robot` in `frame`.
+pub fn derive(robot: &Robot, kin: &Kinematics, frame: Frame) -> NewtonEuler<Poly> {
+    recurse(&steps(robot, kin, frame))
+}

@@ -1,0 +1,178 @@
+//! The recursive Newton–Euler formulation (Spong, Hutchinson and Vidyasagar, *Robot Modeling and
+//! Control*, §7.5), generic over the scalar.
+//!
+//! Forward recursion, `i = 1..n`, with `ω_0 = α_0 = a_e,0 = 0` and every vector of step `i` in the
+//! working frame of link `i` (frame `i` for the body-fixed variant, frame 0 for the inertial one):
+//! - `ω_i = ω_{i−1} + b_i q̇_i` and `α_i = α_{i−1} + b_i q̈_i + ω_i × b_i q̇_i` for a revolute joint
+//!   (`ω_i = ω_{i−1}`, `α_i = α_{i−1}` for a prismatic one), with `ω_{i−1}, α_{i−1}` rotated into the
+//!   working frame and `b_i` the joint axis;
+//! - `a_c,i = a_J + α_i × r_{J,ci} + ω_i × (ω_i × r_{J,ci})`, the same for `a_e,i` with `r_{J,i}`, plus
+//!   `2 ω_i × b_i ḋ_i + b_i d̈_i` for a prismatic joint, where `J` is the point where joint `i` acts
+//!   (`o_{i−1}` in standard DH, so `r_{J,ci} = r_{i−1,ci}` as in Spong) and
+//!   `a_J = a_e,i−1 + α_{i−1} × s_i + ω_{i−1} × (ω_{i−1} × s_i)` with `s_i` from `o_{i−1}` to `J`;
+//! - `g_i`: gravity in the working frame.
+//!
+//! Backward recursion, `i = n..1`, with `f_{n+1} = n_{n+1} = 0`:
+//! - `f_i = R f_{i+1} + m_i (a_c,i − g_i)`;
+//! - `n_i = R n_{i+1} − f_i × r_{J,ci} + (R f_{i+1}) × (r_{i,ci} − s_{i+1}) + I_i α_i + ω_i × (I_i ω_i)`;
+//! - the actuated force or torque: `τ_i = f_iᵀ b_i` (prismatic) or `n_iᵀ b_i` (revolute).
+//!
+//! Moments are computed only from the first revolute joint on: before it, no joint needs them.
+
+use super::scalar::Scalar;
+use super::vec3::{Mat3, Vec3};
+
+/// What step `i` of the recursion needs, everything in the working frame of link `i`.
+#[derive(Clone, Debug)]
+pub struct Step<S> {
+    /// Whether the joint is revolute.
+    pub revolute: bool,
+    /// Rotates vectors of the previous working frame into this one (`R_{i−1}^iᵀ`, or the identity in
+    /// the inertial frame).
+    pub rot_in: Mat3<S>,
+    /// The joint axis `b_i`.
+    pub axis: Vec3<S>,
+    /// `s_i`: from `o_{i−1}` to the joint point `J`.
+    pub s: Vec3<S>,
+    /// `r_{J,i}`: from the joint point to `o_i`.
+    pub r_joint_origin: Vec3<S>,
+    /// `r_{i,ci}`: from `o_i` to the centre of mass.
+    pub r_origin_com: Vec3<S>,
+    /// `m_i`.
+    pub mass: S,
+    /// `I_i` about the centre of mass, or `None` when it is not needed or not given.
+    pub inertia: Option<Mat3<S>>,
+    /// `g_i`.
+    pub gravity: Vec3<S>,
+    /// The joint rate (`q̇_i` times the joint's constant rate).
+    pub qd: S,
+    /// The joint acceleration.
+    pub qdd: S,
+    /// The joint's constant rate `∂θ_i/∂q_i` or `∂d_i/∂q_i`.
+    pub rate: S,
+}
+
+/// Every intermediate quantity of one Newton–Euler run, per link (index `i − 1`).
+#[derive(Clone, Debug)]
+pub struct NewtonEuler<S> {
+    /// `ω_i`.
+    pub omega: Vec<Vec3<S>>,
+    /// `α_i`.
+    pub alpha: Vec<Vec3<S>>,
+    /// `a_c,i`.
+    pub a_c: Vec<Vec3<S>>,
+    /// `a_e,i`.
+    pub a_e: Vec<Vec3<S>>,
+    /// `g_i`.
+    pub g: Vec<Vec3<S>>,
+    /// `f_i`.
+    pub f: Vec<Vec3<S>>,
+    /// `n_i`, `None` where no revolute joint precedes and moments were not needed.
+    pub n: Vec<Option<Vec3<S>>>,
+    /// The actuated forces/torques `τ_i`.
+    pub tau: Vec<S>,
+}
+
+/// Runs both recursions.
+pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
+    let n = steps.len();
+    let (mut omega, mut alpha, mut a_c, mut a_e, mut g) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
+    let (mut w_prev, mut al_prev, mut ae_prev) =
+        (Vec3::<S>::zero(), Vec3::<S>::zero(), Vec3::<S>::zero());
+    let two = S::from_rational(&crate::algebra::Rational::int(2));
+    for st in steps {
+        let w0 = st.rot_in.mul_vec(&w_prev);
+        let al0 = st.rot_in.mul_vec(&al_prev);
+        let ae0 = st.rot_in.mul_vec(&ae_prev);
+        let a_j = if st.s.is_exact_zero() {
+            ae0
+        } else {
+            ae0.add(&al0.cross(&st.s)).add(&w0.cross(&w0.cross(&st.s)))
+        };
+        let (w, al) = if st.revolute {
+            let w = w0.add(&st.axis.scale(&st.qd));
+            let al = al0
+                .add(&st.axis.scale(&st.qdd))
+                .add(&w.cross(&st.axis.scale(&st.qd)));
+            (w, al)
+        } else {
+            (w0, al0)
+        };
+        let accel = |r: &Vec3<S>| {
+            let mut a = a_j.add(&al.cross(r)).add(&w.cross(&w.cross(r)));
+            if !st.revolute {
+                a = a
+                    .add(&w.cross(&st.axis.scale(&st.qd)).scale(&two))
+                    .add(&st.axis.scale(&st.qdd));
+            }
+            a
+        };
+        let r_jc = st.r_joint_origin.add(&st.r_origin_com);
+        a_c.push(accel(&r_jc));
+        let ae = accel(&st.r_joint_origin);
+        a_e.push(ae.clone());
+        g.push(st.gravity.clone());
+        w_prev = w.clone();
+        al_prev = al.clone();
+        ae_prev = ae;
+        omega.push(w);
+        alpha.push(al);
+    }
+    let first_revolute = steps.iter().position(|s| s.revolute);
+    let mut f = vec![Vec3::zero(); n];
+    let mut moments: Vec<Option<Vec3<S>>> = vec![None; n];
+    let mut tau = vec![S::zero(); n];
+    let (mut f_next, mut n_next) = (Vec3::<S>::zero(), Vec3::<S>::zero());
+    for i in (0..n).rev() {
+        let st = &steps[i];
+        // Quantities of link i+1 rotated into the working frame of link i.
+        let (f_here, n_here, s_next) = match steps.get(i + 1) {
+            Some(next) => (
+                next.rot_in.tr_mul_vec(&f_next),
+                next.rot_in.tr_mul_vec(&n_next),
+                next.rot_in.tr_mul_vec(&next.s),
+            ),
+            None => (Vec3::zero(), Vec3::zero(), Vec3::zero()),
+        };
+        let fi = f_here.add(&a_c[i].sub(&g[i]).scale(&st.mass));
+        if first_revolute.is_some_and(|r| i >= r) {
+            let r_jc = st.r_joint_origin.add(&st.r_origin_com);
+            let mut ni = n_here
+                .sub(&fi.cross(&r_jc))
+                .add(&f_here.cross(&st.r_origin_com.sub(&s_next)));
+            if let Some(inertia) = &st.inertia {
+                ni = ni
+                    .add(&inertia.mul_vec(&alpha[i]))
+                    .add(&omega[i].cross(&inertia.mul_vec(&omega[i])));
+            }
+            n_next = ni.clone();
+            moments[i] = Some(ni);
+        }
+        tau[i] = if st.revolute {
+            moments[i]
+                .as_ref()
+                .map_or_else(S::zero, |m| m.dot(&st.axis))
+        } else {
+            fi.dot(&st.axis)
+        }
+        .mul(&st.rate);
+        f_next = fi.clone();
+        f[i] = fi;
+    }
+    NewtonEuler {
+        omega,
+        alpha,
+        a_c,
+        a_e,
+        g,
+        f,
+        n: moments,
+        tau,
+    }
+}

@@ -1,0 +1,150 @@
+//! An independent numeric inverse dynamics in `f64` with nalgebra, straight from the scene.
+//!
+//! It shares no code with the symbolic derivations: it evaluates the DH entries to numbers and runs
+//! Craig's outward/inward Newton–Euler iterations (*Introduction to Robotics*, §6.5) on *joint frames*
+//! (the frame in which joint `i` rotates about or slides along its own z axis), with gravity entered
+//! as an upward acceleration of the base. A standard-DH row becomes a joint frame followed by the fixed
+//! `Trans(x,a) Rot(x,α)`; a modified-DH row is a fixed `Rot(x,α) Trans(x,a)` followed by the joint.
+//! The tests hold the symbolic results to it.
+
+use super::model::{Convention, JointKind, Robot};
+use crate::algebra::{diff, eval_f64, EvalError, Expr, Symbol};
+use nalgebra::{Matrix3, Vector3};
+use std::collections::HashMap;
+
+fn rot_x(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+}
+
+fn rot_z(a: f64) -> Matrix3<f64> {
+    let (s, c) = a.sin_cos();
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// `τ = ID(q, q̇, q̈)` for the robot with the parameters valued by `params`.
+pub fn inverse_dynamics(
+    robot: &Robot,
+    params: &HashMap<Symbol, f64>,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+) -> Result<Vec<f64>, EvalError> {
+    let n = robot.dof();
+    let mut vals = params.clone();
+    for i in 0..n {
+        vals.insert(Symbol::q(i as u32 + 1), q[i]);
+    }
+    let ev = |e: &Expr| eval_f64(e, &vals);
+    let vec3 = |e: &[Expr; 3]| -> Result<Vector3<f64>, EvalError> {
+        Ok(Vector3::new(ev(&e[0])?, ev(&e[1])?, ev(&e[2])?))
+    };
+    // Per joint frame: fixed rotation/translation from the previous joint frame's *body* attachment,
+    // the joint motion, then the fixed part after the joint.
+    struct J {
+        revolute: bool,
+        r: Matrix3<f64>,  // R_{i-1}^{i} between joint frames
+        p: Vector3<f64>,  // origin of joint frame i in joint frame i-1
+        pc: Vector3<f64>, // centre of mass in joint frame i
+        inertia: Matrix3<f64>,
+        mass: f64,
+        rate: f64,
+    }
+    let mut joints: Vec<J> = Vec::with_capacity(n);
+    // After-joint fixed transform of the previous joint (standard DH), applied before the next joint.
+    let (mut post_r, mut post_p) = (Matrix3::identity(), Vector3::zeros());
+    for (i, j) in robot.joints.iter().enumerate() {
+        let qi = Symbol::q(i as u32 + 1);
+        let (a, alpha, d, theta) = (ev(&j.a)?, ev(&j.alpha)?, ev(&j.d)?, ev(&j.theta)?);
+        let var = match j.kind {
+            JointKind::Revolute => &j.theta,
+            JointKind::Prismatic => &j.d,
+        };
+        let rate = eval_f64(&diff(var, &qi), &vals)?;
+        let joint_r = rot_z(theta);
+        let joint_p = Vector3::new(0.0, 0.0, d);
+        let link = &robot.links[i];
+        let com = vec3(&link.com)?;
+        let inertia = match &link.inertia {
+            Some(t) => Matrix3::from_fn(|r, c| ev(&t[r][c]).unwrap_or(f64::NAN)),
+            None => Matrix3::zeros(),
+        };
+        if inertia.iter().any(|x| x.is_nan()) {
+            // Surface the missing symbols with the proper error.
+            for e in link.inertia.iter().flatten().flatten() {
+                ev(e)?;
+            }
+        }
+        let (pre_r, pre_p, after_r, after_p) = match robot.convention {
+            Convention::Standard => (post_r, post_p, rot_x(alpha), Vector3::new(a, 0.0, 0.0)),
+            Convention::Modified => {
+                let fr = post_r * rot_x(alpha);
+                let fp = post_p + post_r * Vector3::new(a, 0.0, 0.0);
+                (fr, fp, Matrix3::identity(), Vector3::zeros())
+            }
+        };
+        // Joint frame i = pre ∘ Rot(z,θ) Trans(z,d), measured from joint frame i−1.
+        let r = pre_r * joint_r;
+        let p = pre_p + pre_r * joint_p;
+        // Body frame i = joint frame i ∘ after: express the link's data in the joint frame.
+        let pc = after_p + after_r * com;
+        let inertia_j = after_r * inertia * after_r.transpose();
+        joints.push(J {
+            revolute: j.kind == JointKind::Revolute,
+            r,
+            p,
+            pc,
+            inertia: inertia_j,
+            mass: ev(&link.mass)?,
+            rate,
+        });
+        post_r = after_r;
+        post_p = after_p;
+    }
+    let g0 = vec3(&robot.gravity)?;
+    let z = Vector3::z();
+    let (mut w, mut wd, mut vd) = (Vector3::zeros(), Vector3::zeros(), -g0);
+    let mut forces = Vec::with_capacity(n);
+    let mut torques = Vec::with_capacity(n);
+    for (i, j) in joints.iter().enumerate() {
+        let rt = j.r.transpose();
+        let (rate_d, rate_dd) = (qd[i] * j.rate, qdd[i] * j.rate);
+        let vd_new;
+        let (w_new, wd_new);
+        if j.revolute {
+            w_new = rt * w + z * rate_d;
+            wd_new = rt * wd + (rt * w).cross(&(z * rate_d)) + z * rate_dd;
+            vd_new = rt * (wd.cross(&j.p) + w.cross(&w.cross(&j.p)) + vd);
+        } else {
+            w_new = rt * w;
+            wd_new = rt * wd;
+            vd_new = rt * (wd.cross(&j.p) + w.cross(&w.cross(&j.p)) + vd)
+                + (w_new * 2.0).cross(&(z * rate_d))
+                + z * rate_dd;
+        }
+        let vdc = wd_new.cross(&j.pc) + w_new.cross(&w_new.cross(&j.pc)) + vd_new;
+        forces.push(vdc * j.mass);
+        torques.push(j.inertia * wd_new + w_new.cross(&(j.inertia * w_new)));
+        w = w_new;
+        wd = wd_new;
+        vd = vd_new;
+    }
+    let mut tau = vec![0.0; n];
+    let (mut f_next, mut n_next) = (Vector3::zeros(), Vector3::zeros());
+    for i in (0..n).rev() {
+        let j = &joints[i];
+        let (r_next, p_next) = match joints.get(i + 1) {
+            Some(nx) => (nx.r, nx.p),
+            None => (Matrix3::identity(), Vector3::zeros()),
+        };
+        let f = r_next * f_next + forces[i];
+        let m = torques[i]
+            + r_next * n_next
+            + j.pc.cross(&forces[i])
+            + p_next.cross(&(r_next * f_next));
+        tau[i] = if j.revolute { m.dot(&z) } else { f.dot(&z) } * j.rate;
+        f_next = f;
+        n_next = m;
+    }
+    Ok(tau)
+}
