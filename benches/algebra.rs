@@ -6,9 +6,11 @@ use symdyn::algebra::{diff, expand, normal_form, to_poly, Expr, Symbol};
 
 /// `Π_{i=1..n} (cos q_i + sin q_i + l_i)`: a dense trig polynomial of 3^n terms.
 fn trig_product(n: u32) -> Expr {
-    Expr::product((1..=n).map(|i| {
-        Expr::cos(&Expr::q(i)) + Expr::sin(&Expr::q(i)) + Expr::symbol(&format!("l{i}"))
-    }))
+    Expr::product(
+        (1..=n).map(|i| {
+            Expr::cos(&Expr::q(i)) + Expr::sin(&Expr::q(i)) + Expr::symbol(&format!("l{i}"))
+        }),
+    )
 }
 
 /// `(Σ_{i=1..n} sin(q_i + q_{i+1}))^2`: angle sums to expand, squares to reduce.
@@ -39,9 +41,10 @@ fn bench(c: &mut Criterion) {
         b.iter(|| diff(black_box(&big), &q3))
     });
     let poly = to_poly(&big);
-    c.bench_function("∂/∂q3 of the expanded trig product (normal form)", |b| {
-        b.iter(|| poly_diff(black_box(&poly), &q3))
-    });
+    c.bench_function(
+        "∂/∂q3 of the expanded trig product (normal form)",
+        |b| b.iter(|| poly_diff(black_box(&poly), &q3)),
+    );
 }
 
 criterion_group!(benches, bench);

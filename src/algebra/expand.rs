@@ -48,6 +48,9 @@ mod tests {
         let s = Expr::sin(&(Expr::q(1) + Expr::q(2)));
         assert_eq!(expand(&(&s * &(&a + &b))), &s * &a + &s * &b);
         let sq = (&a + &Expr::one()).pow(2).unwrap();
-        assert_eq!(expand(&sq), a.pow(2).unwrap() + Expr::int(2) * &a + Expr::one());
+        assert_eq!(
+            expand(&sq),
+            a.pow(2).unwrap() + Expr::int(2) * &a + Expr::one()
+        );
     }
 }

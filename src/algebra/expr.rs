@@ -315,10 +315,20 @@ impl Expr {
                 Kind::Mul(c, fs) => {
                     coeff = &coeff * c;
                     for (b, k) in fs {
-                        *bases.entry(b.clone()).or_insert(0) += k;
+                        let (b, flip) = sign_normal_base(b);
+                        if flip && k % 2 != 0 {
+                            coeff = -coeff;
+                        }
+                        *bases.entry(b).or_insert(0) += k;
                     }
                 }
-                _ => *bases.entry(item.clone()).or_insert(0) += 1,
+                _ => {
+                    let (b, flip) = sign_normal_base(&item);
+                    if flip {
+                        coeff = -coeff;
+                    }
+                    *bases.entry(b).or_insert(0) += 1
+                }
             }
             if coeff.is_zero() {
                 return Expr::zero();
@@ -530,23 +540,34 @@ impl Expr {
     }
 }
 
+/// A sum used as a base reads positive: `(b − a)^k` is stored as `(−1)^k (a − b)^k`. Returns the base
+/// and whether it was negated.
+fn sign_normal_base(b: &Expr) -> (Expr, bool) {
+    match b.kind() {
+        Kind::Add(..) if b.reads_negative() => (-b, true),
+        _ => (b.clone(), false),
+    }
+}
+
 // ---------------------------------------------------------------------------------------------------
 // The total order.
 
 /// Rank of an expression used as a factor; it fixes the order in which factors print:
-/// numbers, square roots, parenthesised sums, π, parameters, coordinates, functions, q̇, q̈.
+/// numbers, square roots, π, masses, parenthesised sums, other parameters, coordinates, functions,
+/// q̇, q̈ — so `m2 (lc2^2 + l1 lc2 cos(q2))` and `(m1+m2+m3) g` read as in Spong.
 fn base_rank(e: &Expr) -> u8 {
     match e.kind() {
         Kind::Num(_) => 0,
         Kind::Sqrt(_) => 1,
-        Kind::Add(..) => 2,
-        Kind::Pi => 3,
-        Kind::Sym(Symbol::Param(_)) => 4,
-        Kind::Sym(Symbol::Coord { order: 0, .. }) => 5,
-        Kind::Fun(..) => 6,
-        Kind::Sym(Symbol::Coord { order: 1, .. }) => 7,
-        Kind::Sym(Symbol::Coord { .. }) => 8,
-        Kind::Mul(..) => 9,
+        Kind::Pi => 2,
+        Kind::Sym(Symbol::Param(n)) if param_class(n) == 0 => 3,
+        Kind::Add(..) => 4,
+        Kind::Sym(Symbol::Param(_)) => 5,
+        Kind::Sym(Symbol::Coord { order: 0, .. }) => 6,
+        Kind::Fun(..) => 7,
+        Kind::Sym(Symbol::Coord { order: 1, .. }) => 8,
+        Kind::Sym(Symbol::Coord { .. }) => 9,
+        Kind::Mul(..) => 10,
     }
 }
 
@@ -813,6 +834,14 @@ mod tests {
         let p2 = Expr::product(names.iter().rev().map(|n| Expr::symbol(n)));
         assert_eq!(p1, p2);
         assert_eq!(p1.cmp(&p2), Ordering::Equal);
+    }
+
+    #[test]
+    fn sums_as_bases_read_positive() {
+        let (a, b) = (x(), y());
+        assert_eq!((&b - &a).pow(2).unwrap(), (&a - &b).pow(2).unwrap());
+        assert_eq!((&b - &a).pow(3).unwrap(), -(&a - &b).pow(3).unwrap());
+        assert_eq!((&b - &a) * (&a - &b).pow(-1).unwrap(), Expr::int(-1));
     }
 
     #[test]

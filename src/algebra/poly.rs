@@ -260,6 +260,11 @@ impl Poly {
         self.terms.len()
     }
 
+    /// Whether there are no terms (the polynomial is zero).
+    pub fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+
     /// Whether this is zero: the zero test.
     pub fn is_zero(&self) -> bool {
         self.terms.is_empty()

@@ -1,0 +1,167 @@
+//! The LaTeX printer (math mode, amsmath for `bmatrix`, `\dddot` and `\ddddot`).
+//!
+//! Products join their factors with a plain space: `2 m_{2} l_{c2}^{2} \sin q_{2} \cos q_{2}`.
+//! A rational coefficient is a fraction before the rest, `\frac{1}{2} m_{1} l_{c1}^{2}`; negative
+//! exponents make one fraction of the whole product, `\frac{m_{1} g}{l_{1} l_{2}}`,
+//! `\frac{m_{1}}{2 l_{c2}}`; a numerator or denominator that is a single sum goes without
+//! parentheses, `\frac{1}{l_{1} + l_{2}}`. Powers of functions use the standard notation `\sin^{2} q_{2}`. A
+//! function's argument is bare when it is one symbol and nothing but functions follow it in the
+//! product, `\sin q_{1}`; otherwise it is in `\left( \right)`: `\sin\left(q_{1}+q_{2}\right)`,
+//! `\sin\left(q_{2}\right) \dot{q}_{1}`.
+
+use super::{names, Piece, Product};
+use crate::algebra::{Expr, Func, Kind};
+
+/// A whole expression, at the top level.
+pub(super) fn expr(e: &Expr) -> String {
+    sum(&Piece::of_sum(e), false)
+}
+
+/// Signed pieces joined into a sum; `nested` sums are compact unless a piece contains a space.
+pub(super) fn sum(pieces: &[Piece], nested: bool) -> String {
+    if pieces.is_empty() {
+        return "0".to_string();
+    }
+    let bodies: Vec<String> = pieces.iter().map(|p| product(&p.product)).collect();
+    let spaced = !nested || bodies.iter().any(|b| b.contains(' '));
+    let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
+    let mut out = String::new();
+    for (i, (piece, body)) in pieces.iter().zip(&bodies).enumerate() {
+        match (i, piece.negative) {
+            (0, false) => {}
+            (0, true) => out.push('-'),
+            (_, false) => out.push_str(plus),
+            (_, true) => out.push_str(minus),
+        }
+        out.push_str(body);
+    }
+    out
+}
+
+/// `\begin{bmatrix} r1 \\ r2 \end{bmatrix}` from rows already joined with `&`.
+pub(super) fn bmatrix(rows: &[String]) -> String {
+    if rows.is_empty() {
+        return "\\begin{bmatrix}\\end{bmatrix}".to_string();
+    }
+    format!(
+        "\\begin{{bmatrix}} {} \\end{{bmatrix}}",
+        rows.join(" \\\\ ")
+    )
+}
+
+/// The magnitude of a product: `2 m_{2}`, `\frac{1}{2} m_{1}`, `\frac{\sqrt{2}}{2}`, `\frac{m_{1}}{l_{c2}}`.
+fn product(p: &Product) -> String {
+    let mut top: Vec<String> = Vec::new();
+    if !p.numer_is_one() {
+        top.push(p.numer.to_string());
+    }
+    top.extend(factors(&p.numeric));
+    if p.down.is_empty() {
+        let mut parts: Vec<String> = Vec::new();
+        let number = top.join(" ");
+        if !p.denom_is_one() {
+            let n = if number.is_empty() { "1" } else { &number };
+            parts.push(format!("\\frac{{{n}}}{{{}}}", p.denom));
+        } else if !number.is_empty() {
+            parts.push(number);
+        }
+        parts.extend(factors(&p.up));
+        if parts.is_empty() {
+            return "1".to_string();
+        }
+        return parts.join(" ");
+    }
+    let numerator = match lone_sum(&p.up) {
+        Some(s) if top.is_empty() => s,
+        _ => {
+            top.extend(factors(&p.up));
+            if top.is_empty() {
+                "1".to_string()
+            } else {
+                top.join(" ")
+            }
+        }
+    };
+    let denominator = match lone_sum(&p.down) {
+        Some(s) if p.denom_is_one() => s,
+        _ => {
+            let mut bottom: Vec<String> = Vec::new();
+            if !p.denom_is_one() {
+                bottom.push(p.denom.to_string());
+            }
+            bottom.extend(factors(&p.down));
+            bottom.join(" ")
+        }
+    };
+    format!("\\frac{{{numerator}}}{{{denominator}}}")
+}
+
+/// A fraction's numerator or denominator that is one sum needs no parentheses: `\frac{1}{a + b}`.
+fn lone_sum(list: &[(Expr, i64)]) -> Option<String> {
+    match list {
+        [(e, 1)] if matches!(e.kind(), Kind::Add(..)) => Some(expr(e)),
+        _ => None,
+    }
+}
+
+/// A run of juxtaposed factors; a function learns whether a non-function factor follows it.
+fn factors(list: &[(Expr, i64)]) -> Vec<String> {
+    list.iter()
+        .enumerate()
+        .map(|(i, (b, e))| {
+            let guarded = list
+                .get(i + 1)
+                .is_some_and(|(next, _)| !matches!(next.kind(), Kind::Fun(..)));
+            factor(b, *e, guarded)
+        })
+        .collect()
+}
+
+/// `base^{exp}` for a positive exponent; functions as `\sin^{2} q_{2}`. `guarded`: a non-function
+/// factor follows, so a function's argument needs its parentheses.
+fn factor(base: &Expr, exp: i64, guarded: bool) -> String {
+    if let Kind::Fun(f, arg) = base.kind() {
+        return function(*f, arg, exp, guarded);
+    }
+    let b = atom(base);
+    if exp == 1 {
+        b
+    } else {
+        format!("{b}^{{{exp}}}")
+    }
+}
+
+/// `\sin q_{1}`, `\cos^{2} q_{2}`, `\sin\left(q_{1}+q_{2}\right)`.
+fn function(f: Func, arg: &Expr, exp: i64, guarded: bool) -> String {
+    let name = match f {
+        Func::Sin => "\\sin",
+        Func::Cos => "\\cos",
+    };
+    let power = if exp == 1 {
+        String::new()
+    } else {
+        format!("^{{{exp}}}")
+    };
+    let bare = matches!(arg.kind(), Kind::Sym(_) | Kind::Pi) && !guarded;
+    if bare {
+        format!("{name}{power} {}", atom(arg))
+    } else {
+        format!(
+            "{name}{power}\\left({}\\right)",
+            sum(&Piece::of_sum(arg), true)
+        )
+    }
+}
+
+/// A base that takes a superscript as it is: a symbol, `\pi`, `\sqrt{k}`, or a parenthesised sum.
+fn atom(e: &Expr) -> String {
+    match e.kind() {
+        Kind::Sym(s) => names::latex(s),
+        Kind::Pi => "\\pi".to_string(),
+        Kind::Sqrt(k) => format!("\\sqrt{{{k}}}"),
+        Kind::Fun(f, arg) => format!("{{{}}}", function(*f, arg, 1, true)),
+        Kind::Add(..) => format!("\\left({}\\right)", sum(&Piece::of_sum(e), true)),
+        // Canonical products never have numbers or products as bases.
+        Kind::Num(_) | Kind::Mul(..) => format!("\\left({}\\right)", expr(e)),
+    }
+}

@@ -1,0 +1,38 @@
+//! The one shared helper of the integration tests: insta snapshots in the crate's `snapshots/`.
+//!
+//! Every integration test file declares `mod common;` and asserts snapshots with
+//! [`assert_snap!`](crate::assert_snap), never with `insta::assert_snapshot!` directly, so that all
+//! snapshots live in one top-level directory with names that say which test file wrote them:
+//! `snapshots/<test file>__<name>.snap` (`print__text.snap` from `tests/print.rs`).
+//!
+//! Review a new or changed snapshot line by line before accepting it: run
+//! `INSTA_UPDATE=always cargo test` once, read the `.snap` files (`git diff snapshots/`), then check
+//! that a plain `cargo test` passes.
+
+/// The settings every snapshot is taken with: `snapshots/` at the crate root as the directory, no
+/// module path in file names (the name carries the test file instead), no expression in the header.
+#[allow(dead_code)]
+pub fn settings() -> insta::Settings {
+    let mut s = insta::Settings::clone_current();
+    s.set_snapshot_path(concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"));
+    s.set_prepend_module_to_snapshot(false);
+    s.set_omit_expression(true);
+    s
+}
+
+/// The prefix of snapshot names from a `module_path!()`: its first segment, which in an integration
+/// test is the test file's name without `.rs`.
+#[allow(dead_code)]
+pub fn test_file(module_path: &str) -> &str {
+    module_path.split("::").next().unwrap_or(module_path)
+}
+
+/// `assert_snap!(name, value)`: asserts that `value` (anything `Display`) matches the snapshot
+/// `snapshots/<test file>__<name>.snap`, under [`settings`].
+#[macro_export]
+macro_rules! assert_snap {
+    ($name:expr, $value:expr $(,)?) => {{
+        let name = format!("{}__{}", $crate::common::test_file(module_path!()), $name);
+        $crate::common::settings().bind(|| insta::assert_snapshot!(name, $value));
+    }};
+}
