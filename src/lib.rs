@@ -1,12 +1,14 @@
 //! symdyn: exact symbolic equations of motion for serial robot manipulators.
 //!
 //! Layers, bottom up: [`algebra`] (canonical expressions, the normal form and the zero test),
-//! [`print`] (text, ASCII and LaTeX), [`dynamics`] (robots, Euler–Lagrange, Newton–Euler, proofs).
-//! The library does no I/O; the `symdyn` binary is a thin shell over it.
+//! [`parse`] (the pest grammars for expressions and scenes), [`print`] (text, ASCII and LaTeX),
+//! [`dynamics`] (robots, Euler–Lagrange, Newton–Euler, proofs). The library does no I/O; the `symdyn`
+//! binary is a thin shell over it.
 
 // Matrix code follows the book's index notation (d_kj, c_ijk): index loops read closer to it.
 #![allow(clippy::needless_range_loop)]
 
 pub mod algebra;
 pub mod dynamics;
+pub mod parse;
 pub mod print;

@@ -14,10 +14,10 @@ use std::cmp::Ordering;
 use std::fmt;
 
 /// An exact rational number in lowest terms.
-#[derive(Clone, PartialEq, Eq, Hash)]
+#[derive(Clone, PartialEq, Eq)]
 pub struct Rational(Repr);
 
-#[derive(Clone, PartialEq, Eq, Hash)]
+#[derive(Clone, PartialEq, Eq)]
 enum Repr {
     /// numerator, denominator (> 0), coprime.
     Small(i64, i64),
@@ -257,7 +257,7 @@ impl Rational {
         }
         let digits = format!("{int_part}{frac_part}");
         let num: BigInt = digits.parse().ok()?;
-        let scale = exponent - frac_part.len() as i64;
+        let scale = exponent.checked_sub(frac_part.len() as i64)?;
         if scale.unsigned_abs() > 100_000 {
             return None;
         }
@@ -268,6 +268,25 @@ impl Rational {
             BigRational::new(num, num_traits::pow(ten, (-scale) as usize))
         };
         Some(Rational::from_big(value))
+    }
+}
+
+impl std::hash::Hash for Rational {
+    /// Hashes numerator and denominator directly (the form is canonical, so this is value hashing;
+    /// `BigRational`'s own hash recurses through a continued fraction and can exhaust the stack).
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        match &self.0 {
+            Repr::Small(n, d) => {
+                state.write_u8(0);
+                state.write_i64(*n);
+                state.write_i64(*d);
+            }
+            Repr::Big(r) => {
+                state.write_u8(1);
+                r.numer().hash(state);
+                r.denom().hash(state);
+            }
+        }
     }
 }
 
@@ -413,6 +432,11 @@ pub fn split_square(n: &BigInt) -> (BigInt, BigInt) {
         }
         p += 1;
     }
+    // What is left has no square factor below the bound; it may still be a perfect square.
+    let root = num_integer::Roots::sqrt(&rest);
+    if &root * &root == rest {
+        return (k * root, BigInt::one());
+    }
     (k, rest)
 }
 
@@ -430,6 +454,15 @@ mod tests {
         assert_eq!(&r(17, 192) + &r(1, 4), r(65, 192));
         assert_eq!(&r(2, 4) * &r(2, 1), Rational::one());
         assert_eq!(r(3, -6), r(-1, 2));
+    }
+
+    #[test]
+    fn huge_fractions_hash_without_recursion() {
+        use std::hash::{Hash, Hasher};
+        let big = r(3, 7).pow(20_000).unwrap();
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        big.hash(&mut h);
+        let _ = h.finish();
     }
 
     #[test]
