@@ -1,1 +1,20 @@
-fn main() {}
+//! The `symdyn` command line: a thin shell over the library. Arguments are parsed by clap, validated
+//! into library calls, and every error becomes a message on stderr and a non-zero exit code.
+
+mod cli;
+
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let args = <cli::Args as clap::Parser>::parse();
+    match cli::run(args) {
+        Ok(output) => {
+            print!("{output}");
+            ExitCode::SUCCESS
+        }
+        Err(err) => {
+            eprintln!("{err}");
+            ExitCode::from(err.exit_code())
+        }
+    }
+}

@@ -1,0 +1,94 @@
+//! Command-line arguments and dispatch. Each command returns its whole output as a string, so the
+//! tests can drive `run` exactly as the binary does.
+
+mod algebra_cmds;
+mod error;
+
+pub use error::CliError;
+
+use clap::{Parser, Subcommand};
+
+/// Exact symbolic equations of motion for serial robot manipulators.
+#[derive(Parser, Debug)]
+#[command(name = "symdyn", version, about)]
+pub struct Args {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Simplify an expression to its normal form, then tidy it for display.
+    Simplify {
+        /// The expression, e.g. "sin(q1)^2 + cos(q1)^2".
+        expr: String,
+        /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
+        #[arg(long)]
+        ascii: bool,
+    },
+    /// Partial derivative(s) with respect to one or more variables, in order.
+    Diff {
+        /// The expression.
+        expr: String,
+        /// Variables: parameters (m2), coordinates (q1) or their derivatives (qd1, qdd1).
+        #[arg(required = true)]
+        vars: Vec<String>,
+        /// Print ASCII.
+        #[arg(long)]
+        ascii: bool,
+    },
+    /// Total time derivative: q_i depend on time, every other symbol is constant.
+    Dt {
+        /// The expression.
+        expr: String,
+        /// Print ASCII.
+        #[arg(long)]
+        ascii: bool,
+    },
+    /// Distribute products over sums (sin and cos are left alone).
+    Expand {
+        /// The expression.
+        expr: String,
+        /// Print ASCII.
+        #[arg(long)]
+        ascii: bool,
+    },
+    /// Print an expression as LaTeX.
+    Latex {
+        /// The expression.
+        expr: String,
+    },
+    /// Substitute values for symbols: exact when every value is exact, `--float` for f64.
+    Subs {
+        /// The expression.
+        expr: String,
+        /// Assignments name=value (values are expressions: 1/2, pi/3, 0.25, l1+l2).
+        #[arg(required = true)]
+        assignments: Vec<String>,
+        /// Evaluate numerically in f64 (every symbol must get a value).
+        #[arg(long)]
+        float: bool,
+        /// Print ASCII.
+        #[arg(long)]
+        ascii: bool,
+    },
+}
+
+/// Runs one command and returns what it prints.
+pub fn run(args: Args) -> Result<String, CliError> {
+    match args.command {
+        Command::Simplify { expr, ascii } => algebra_cmds::simplify(&expr, ascii),
+        Command::Diff { expr, vars, ascii } => algebra_cmds::diff(&expr, &vars, ascii),
+        Command::Dt { expr, ascii } => algebra_cmds::dt(&expr, ascii),
+        Command::Expand { expr, ascii } => algebra_cmds::expand(&expr, ascii),
+        Command::Latex { expr } => algebra_cmds::latex(&expr),
+        Command::Subs {
+            expr,
+            assignments,
+            float,
+            ascii,
+        } => algebra_cmds::subs(&expr, &assignments, float, ascii),
+    }
+}
