@@ -17,6 +17,7 @@ pub mod number;
 pub mod poly;
 pub mod subs;
 pub mod symbol;
+pub mod tidy;
 pub(crate) mod trig_values;
 
 pub use calculus::{diff, dt};
