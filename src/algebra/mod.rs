@@ -19,6 +19,7 @@ pub mod poly;
 pub mod simplify;
 pub mod subs;
 pub mod symbol;
+pub mod tidy;
 pub(crate) mod trig_values;
 
 pub use calculus::{diff, dt};

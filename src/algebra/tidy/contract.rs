@@ -1,0 +1,344 @@
+//! Trig contraction: products of `sin`/`cos` of single angles back into `sin`/`cos` of sums.
+//!
+//! The normal form expands every angle sum (`cos(q2 + q3)` becomes `cos q2 cos q3 − sin q2 sin q3`) and
+//! every `sin² x` (into `1 − cos² x`); [`contract_trig`] undoes that for display. It works on the
+//! expanded normal form and repeats one pass of the first [`TRIG_RULES`] rule that applies until none
+//! does (at most [`PASS_LIMIT`] passes). Each pass merges disjoint *pairs of terms* of the sum into
+//! one term, so every pass shrinks the sum and the loop terminates. Candidates are visited in
+//! canonical order (never hash order), so the result is deterministic.
+//!
+//! Rules, one example each (two terms `c R f(A) g(B)` that agree in their other factors `R` and in
+//! their coefficient `c` up to sign; [`ANGLE_IDENTITIES`]):
+//! - `cos(A+B)`: `cos q2 cos q3 − sin q2 sin q3` is `cos(q2 + q3)`;
+//! - `cos(A−B)`: `cos q1 cos q2 + sin q1 sin q2` is `cos(q1 − q2)`;
+//! - `sin(A+B)`: `sin q2 cos q3 + cos q2 sin q3` is `sin(q2 + q3)`;
+//! - `sin(A−B)`: `sin q1 cos q2 − cos q1 sin q2` is `sin(q1 − q2)`;
+//! - `pythagoras` ([`super::pythagoras`]): `a − a cos² q2` is `a sin² q2`.
+//!
+//! With other factors and coefficients: `a cos q1 cos q2 − a sin q1 sin q2 + b` is
+//! `a cos(q1 + q2) + b`, and `cos q1 cos q2 cos q3 − cos q1 sin q2 sin q3` is `cos q1 cos(q2 + q3)`.
+//! Products of one angle stay products: `2 sin q cos q` is *not* rewritten as `sin 2q`.
+//!
+//! Only angles that are integer combinations of symbols take part (`q1`, `q1 + q2`, `2 q1 − q3`): the
+//! normal form expands exactly those, so the result is [`crate::algebra::normal::equal`] to the input.
+//! `sin(q1/2)` or `cos(π/5)` stay as they are.
+
+use super::rule::{first_change, fixpoint, Rule};
+use crate::algebra::expr::{Expr, Func, Kind};
+use crate::algebra::normal::normal_form;
+use crate::algebra::number::Rational;
+use std::collections::BTreeMap;
+
+/// The most passes [`contract_trig`] makes (each pass merges at least one pair of terms).
+pub const PASS_LIMIT: usize = 64;
+
+/// The rule set of [`contract_trig`], tried in this order on every pass.
+pub const TRIG_RULES: [Rule; 2] = [
+    Rule {
+        name: "angle sum",
+        apply: angle_sum,
+    },
+    Rule {
+        name: "pythagoras",
+        apply: super::pythagoras::pythagoras,
+    },
+];
+
+/// `e` in normal form with angle sums contracted (equal to `e` as a function).
+///
+/// `cos(q2) cos(q3) − sin(q2) sin(q3)` gives `cos(q2 + q3)`.
+pub fn contract_trig(e: &Expr) -> Expr {
+    fixpoint(&normal_form(e), PASS_LIMIT, |e| {
+        first_change(&TRIG_RULES, e)
+    })
+}
+
+/// One angle-addition identity read backwards: `c f₁(A) g₁(B) + sign · c f₂(A) g₂(B) = c h(A ± B)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AngleIdentity {
+    /// The identity's name, its right side.
+    pub name: &'static str,
+    /// The functions of `A` and of `B` in the first term.
+    pub first: (Func, Func),
+    /// The functions of `A` and of `B` in the second term.
+    pub second: (Func, Func),
+    /// The second term's coefficient over the first's: `1` or `-1`.
+    pub sign: i64,
+    /// The function of the merged term.
+    pub result: Func,
+    /// Whether the merged angle is `A + B` (else `A − B`).
+    pub plus: bool,
+}
+
+/// The four angle-addition identities, read from products to sums.
+pub const ANGLE_IDENTITIES: [AngleIdentity; 4] = [
+    AngleIdentity {
+        name: "cos(A+B) = cos A cos B - sin A sin B",
+        first: (Func::Cos, Func::Cos),
+        second: (Func::Sin, Func::Sin),
+        sign: -1,
+        result: Func::Cos,
+        plus: true,
+    },
+    AngleIdentity {
+        name: "cos(A-B) = cos A cos B + sin A sin B",
+        first: (Func::Cos, Func::Cos),
+        second: (Func::Sin, Func::Sin),
+        sign: 1,
+        result: Func::Cos,
+        plus: false,
+    },
+    AngleIdentity {
+        name: "sin(A+B) = sin A cos B + cos A sin B",
+        first: (Func::Sin, Func::Cos),
+        second: (Func::Cos, Func::Sin),
+        sign: 1,
+        result: Func::Sin,
+        plus: true,
+    },
+    AngleIdentity {
+        name: "sin(A-B) = sin A cos B - cos A sin B",
+        first: (Func::Sin, Func::Cos),
+        second: (Func::Cos, Func::Sin),
+        sign: -1,
+        result: Func::Sin,
+        plus: false,
+    },
+];
+
+/// One term's part in a candidate pair: which term, its functions of `A` and `B`, its coefficient.
+struct Candidate {
+    index: usize,
+    funcs: (Func, Func),
+    coeff: Rational,
+}
+
+impl AngleIdentity {
+    /// `c h(A ± B)` if the two candidates are the two sides of this identity (in either order).
+    fn merge(&self, p: &Candidate, q: &Candidate, a: &Expr, b: &Expr) -> Option<Expr> {
+        let sign = Rational::int(self.sign);
+        [(p, q), (q, p)].into_iter().find_map(|(x, y)| {
+            (x.funcs == self.first && y.funcs == self.second && y.coeff == &x.coeff * &sign).then(
+                || {
+                    let angle = if self.plus { a + b } else { a - b };
+                    Expr::num(x.coeff.clone()) * Expr::fun(self.result, &angle)
+                },
+            )
+        })
+    }
+}
+
+/// Whether the normal form expands `sin`/`cos` of `e` exactly: a non-zero integer combination of
+/// symbols without a constant (`q1`, `2 q1`, `q1 − q3`).
+pub fn is_angle(e: &Expr) -> bool {
+    let is_sym = |t: &Expr| matches!(t.kind(), Kind::Sym(_));
+    match e.kind() {
+        Kind::Sym(_) => true,
+        Kind::Mul(c, fs) => c.is_integer() && fs.len() == 1 && fs[0].1 == 1 && is_sym(&fs[0].0),
+        Kind::Add(c, ts) => c.is_zero() && ts.iter().all(|(t, k)| k.is_integer() && is_sym(t)),
+        Kind::Num(_) | Kind::Pi | Kind::Sqrt(_) | Kind::Fun(..) => false,
+    }
+}
+
+/// A term of a sum split into its rational coefficient and its factors.
+pub(super) struct Term {
+    /// The coefficient.
+    pub coeff: Rational,
+    /// The factors `(base, exponent)`, in canonical order.
+    pub factors: Vec<(Expr, i64)>,
+}
+
+impl Term {
+    /// The terms of `e` (the constant as the term with no factors).
+    pub fn split(e: &Expr) -> Vec<Term> {
+        e.terms()
+            .into_iter()
+            .map(|(t, coeff)| Term {
+                coeff,
+                factors: t.factors(),
+            })
+            .collect()
+    }
+
+    /// The product of the factors, with the exponent of factor `i` lowered by `k` for each `(i, k)`.
+    pub fn monomial_without(&self, lower: &[(usize, i64)]) -> Expr {
+        Expr::product(self.factors.iter().enumerate().map(|(i, (b, k))| {
+            let less: i64 = lower.iter().filter(|(j, _)| *j == i).map(|(_, d)| d).sum();
+            b.pow(k - less)
+                .expect("bases of a canonical product are non-zero")
+        }))
+    }
+
+    /// The whole term.
+    pub fn expr(&self) -> Expr {
+        self.monomial_without(&[]).scale(&self.coeff)
+    }
+}
+
+/// Rebuilds a sum from the terms not `used`, plus the `merged` ones; `None` if nothing merged.
+pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Option<Expr> {
+    if merged.is_empty() {
+        return None;
+    }
+    let kept = terms
+        .iter()
+        .zip(used)
+        .filter(|(_, u)| !**u)
+        .map(|(t, _)| t.expr());
+    Some(Expr::sum(kept.chain(merged)))
+}
+
+/// One pass of the angle-sum identities over the terms of `e`.
+fn angle_sum(e: &Expr) -> Option<Expr> {
+    let terms = Term::split(e);
+    // (other factors R, angle A, angle B) -> the terms `c R f(A) g(B)`, A < B in canonical order.
+    let mut groups: BTreeMap<(Expr, Expr, Expr), Vec<Candidate>> = BTreeMap::new();
+    for (index, t) in terms.iter().enumerate() {
+        let trig: Vec<(usize, Func, &Expr)> = t
+            .factors
+            .iter()
+            .enumerate()
+            .filter_map(|(i, (b, k))| match b.kind() {
+                Kind::Fun(f, a) if *k > 0 && is_angle(a) => Some((i, *f, a)),
+                _ => None,
+            })
+            .collect();
+        for (x, &(i, f, a)) in trig.iter().enumerate() {
+            for &(j, g, b) in &trig[x + 1..] {
+                if a == b {
+                    continue;
+                }
+                let ((a, f), (b, g)) = if a < b {
+                    ((a, f), (b, g))
+                } else {
+                    ((b, g), (a, f))
+                };
+                let rest = t.monomial_without(&[(i, 1), (j, 1)]);
+                groups
+                    .entry((rest, a.clone(), b.clone()))
+                    .or_default()
+                    .push(Candidate {
+                        index,
+                        funcs: (f, g),
+                        coeff: t.coeff.clone(),
+                    });
+            }
+        }
+    }
+    let mut used = vec![false; terms.len()];
+    let mut merged = Vec::new();
+    for ((rest, a, b), cands) in &groups {
+        for (x, p) in cands.iter().enumerate() {
+            for q in &cands[x + 1..] {
+                if used[p.index] || used[q.index] || p.index == q.index {
+                    continue;
+                }
+                if let Some(m) = ANGLE_IDENTITIES.iter().find_map(|id| id.merge(p, q, a, b)) {
+                    merged.push(m * rest);
+                    used[p.index] = true;
+                    used[q.index] = true;
+                }
+            }
+        }
+    }
+    rebuild(&terms, &used, merged)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::normal::equal;
+
+    fn q(i: u32) -> Expr {
+        Expr::q(i)
+    }
+    fn c(e: &Expr) -> Expr {
+        Expr::cos(e)
+    }
+    fn s(e: &Expr) -> Expr {
+        Expr::sin(e)
+    }
+
+    /// `contract_trig(input)` is `expected` structurally, and equal to `input` as a function.
+    fn check(input: Expr, expected: Expr) {
+        let got = contract_trig(&input);
+        assert_eq!(got, expected, "contract_trig({input:?})");
+        assert!(equal(&input, &got), "value changed: {input:?} -> {got:?}");
+    }
+
+    #[test]
+    fn rules() {
+        let (q1, q2, q3) = (q(1), q(2), q(3));
+        let (a, b) = (Expr::symbol("a"), Expr::symbol("b"));
+        let rows = [
+            // One row per identity.
+            (c(&q2) * c(&q3) - s(&q2) * s(&q3), c(&(&q2 + &q3))),
+            (c(&q1) * c(&q2) + s(&q1) * s(&q2), c(&(&q1 - &q2))),
+            (s(&q2) * c(&q3) + c(&q2) * s(&q3), s(&(&q2 + &q3))),
+            (s(&q1) * c(&q2) - c(&q1) * s(&q2), s(&(&q1 - &q2))),
+            // Pythagoras.
+            (
+                &a - &a * c(&q2).pow(2).unwrap(),
+                &a * s(&q2).pow(2).unwrap(),
+            ),
+            // Other factors and coefficients.
+            (
+                &a * c(&q1) * c(&q2) - &a * s(&q1) * s(&q2) + &b,
+                &a * c(&(&q1 + &q2)) + &b,
+            ),
+            (
+                c(&q1) * c(&q2) * c(&q3) - c(&q1) * s(&q2) * s(&q3),
+                c(&q1) * c(&(&q2 + &q3)),
+            ),
+            (
+                Expr::int(-3) * s(&q1) * c(&q2) - Expr::int(3) * c(&q1) * s(&q2),
+                Expr::int(-3) * s(&(&q1 + &q2)),
+            ),
+            // Nested: three angles in two passes; an expanded angle sum comes back whole.
+            (c(&(&q1 + &q2 + &q3)), c(&(&q1 + &q2 + &q3))),
+            (s(&(&q1 - &q3)) * &a + &b, s(&(&q1 - &q3)) * &a + &b),
+            // Products of one angle stay; mismatched coefficients stay.
+            (
+                Expr::int(2) * s(&q1) * c(&q1),
+                Expr::int(2) * s(&q1) * c(&q1),
+            ),
+            (
+                c(&q1) * c(&q2) - Expr::int(2) * s(&q1) * s(&q2),
+                c(&q1) * c(&q2) - Expr::int(2) * s(&q1) * s(&q2),
+            ),
+            // Angles outside the exact class stay.
+            (
+                c(&(&q1 * Expr::frac(1, 2).unwrap())) * c(&q2)
+                    - s(&(&q1 * Expr::frac(1, 2).unwrap())) * s(&q2),
+                c(&(&q1 * Expr::frac(1, 2).unwrap())) * c(&q2)
+                    - s(&(&q1 * Expr::frac(1, 2).unwrap())) * s(&q2),
+            ),
+        ];
+        for (input, expected) in rows {
+            check(input, expected);
+        }
+    }
+
+    #[test]
+    fn angles() {
+        let (q1, q2) = (q(1), q(2));
+        assert!(is_angle(&q1));
+        assert!(is_angle(&(Expr::int(2) * &q1 - &q2)));
+        assert!(!is_angle(&(&q1 + Expr::one())));
+        assert!(!is_angle(&(&q1 * Expr::frac(1, 2).unwrap())));
+        assert!(!is_angle(&(Expr::pi() * Expr::frac(1, 5).unwrap())));
+        assert!(!is_angle(&(&q1 * &q2)));
+    }
+
+    #[test]
+    fn identities_hold() {
+        let (a, b) = (q(1), q(2));
+        for id in ANGLE_IDENTITIES {
+            let lhs = Expr::fun(id.result, &if id.plus { &a + &b } else { &a - &b });
+            let first = Expr::fun(id.first.0, &a) * Expr::fun(id.first.1, &b);
+            let second = Expr::fun(id.second.0, &a) * Expr::fun(id.second.1, &b);
+            let rhs = first + second.scale(&Rational::int(id.sign));
+            assert!(equal(&lhs, &rhs), "{}", id.name);
+        }
+    }
+}

@@ -1,0 +1,254 @@
+//! Common factors: `m1 g + m2 g + m3 g` is displayed `(m1 + m2 + m3) g`.
+//!
+//! [`factor_common`] walks the expression bottom up; at every sum it pulls out
+//! - the rational content (the gcd of the coefficients), made negative when the remaining sum would
+//!   otherwise read negative: `-m1 g - m2 g` is `-(m1 + m2) g`;
+//! - the common monomial: every base present in all terms with exponents of one sign, to the smallest
+//!   such power (`a/x + b/x` is `(a + b)/x`, but `a/x + b` keeps its shape).
+//!
+//! The canonical constructors distribute a lone number over a sum (`2 (x + 2 y)` *is* `2 x + 4 y`),
+//! so the content only stays outside when a monomial or another factor keeps it company:
+//! `2 a x + 4 a y` is `2 a (x + 2 y)`. [`factor_list`] gives the pieces before they are multiplied,
+//! so a caller can add such a factor (a `q̈` key) first.
+//!
+//! Only whole sums are factored; *partial* grouping (`m1 lc1 + m2 (l1 + lc2)`) is the job of
+//! [`mod@super::group`].
+
+use crate::algebra::expr::{Expr, Kind};
+use crate::algebra::number::Rational;
+
+/// `e` with the common factor of every sum in it pulled out (equal to `e` as a function).
+///
+/// `m1 g + m2 g + m3 g` gives `(m1 + m2 + m3) g`; `2 a x + 4 a y` gives `2 a (x + 2 y)`.
+pub fn factor_common(e: &Expr) -> Expr {
+    Expr::product(factor_list(e))
+}
+
+/// The factors whose product is `e`, with the common factor of every sum pulled out: for
+/// `2 a x + 4 a y` the list `[2, a, x + 2 y]`. Multiply them with [`Expr::product`], together with any
+/// further factor (the content of a sum survives there only next to another factor).
+pub fn factor_list(e: &Expr) -> Vec<Expr> {
+    match e.kind() {
+        Kind::Num(_) | Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => vec![e.clone()],
+        Kind::Fun(f, a) => vec![Expr::fun(*f, &factor_common(a))],
+        Kind::Mul(c, fs) => {
+            let mut out = vec![Expr::num(c.clone())];
+            for (b, k) in fs {
+                for piece in factor_list(b) {
+                    // Every piece of a non-zero base is non-zero, so its power exists.
+                    out.push(
+                        piece
+                            .pow(*k)
+                            .expect("a factor of a non-zero base is non-zero"),
+                    );
+                }
+            }
+            out
+        }
+        Kind::Add(..) => factor_sum(e),
+    }
+}
+
+/// A term of a sum: its rational coefficient and its factors `(base, exponent)`.
+struct Term {
+    coeff: Rational,
+    factors: Vec<(Expr, i64)>,
+}
+
+impl Term {
+    fn exponent(&self, base: &Expr) -> i64 {
+        self.factors
+            .iter()
+            .find(|(b, _)| b == base)
+            .map_or(0, |(_, k)| *k)
+    }
+
+    /// The term times `scale`, divided by `monomial`.
+    fn divided(&self, scale: &Rational, monomial: &[(Expr, i64)]) -> Expr {
+        let mut parts = Vec::with_capacity(self.factors.len() + 1);
+        parts.push(Expr::num(&self.coeff * scale));
+        for (b, k) in &self.factors {
+            let m = monomial.iter().find(|(c, _)| c == b).map_or(0, |(_, m)| *m);
+            if k - m != 0 {
+                parts.push(
+                    b.pow(k - m)
+                        .expect("bases of a canonical product are non-zero"),
+                );
+            }
+        }
+        Expr::product(parts)
+    }
+}
+
+/// The exponent with which `base` divides every term: the smallest power if all are positive, the
+/// one closest to zero if all are negative, otherwise 0.
+fn common_exponent(terms: &[Term], base: &Expr) -> i64 {
+    let mut exps = terms.iter().map(|t| t.exponent(base));
+    let first = exps.next().unwrap_or(0);
+    exps.try_fold(first, |acc, k| match (acc.signum(), k.signum()) {
+        (1, 1) => Some(acc.min(k)),
+        (-1, -1) => Some(acc.max(k)),
+        _ => None,
+    })
+    .unwrap_or(0)
+}
+
+/// Factors a sum: `[content, monomial factors..., primitive sum]`, or the sum itself (with its terms
+/// factored) when nothing is common.
+fn factor_sum(e: &Expr) -> Vec<Expr> {
+    let terms: Vec<Term> = e
+        .terms()
+        .into_iter()
+        .map(|(t, c)| {
+            let (k, rest) = factor_common(&t).split_coeff();
+            Term {
+                coeff: &c * &k,
+                factors: rest.factors(),
+            }
+        })
+        .collect();
+    let content = terms
+        .iter()
+        .fold(Rational::zero(), |acc, t| acc.gcd(&t.coeff));
+    let monomial: Vec<(Expr, i64)> = match terms.first() {
+        Some(first) if terms.len() > 1 => first
+            .factors
+            .iter()
+            .map(|(b, _)| (b.clone(), common_exponent(&terms, b)))
+            .filter(|(_, k)| *k != 0)
+            .collect(),
+        _ => Vec::new(),
+    };
+    if terms.len() < 2 || content.is_zero() {
+        return vec![Expr::sum(
+            terms.iter().map(|t| t.divided(&Rational::one(), &[])),
+        )];
+    }
+    let scale = content.recip().expect("non-zero content");
+    let mut inner = Expr::sum(terms.iter().map(|t| t.divided(&scale, &monomial)));
+    let mut content = content;
+    if inner.reads_negative() {
+        inner = -&inner;
+        content = -content;
+    }
+    let mut out = Vec::with_capacity(monomial.len() + 2);
+    out.push(Expr::num(content));
+    for (b, k) in monomial {
+        out.push(b.pow(k).expect("bases of a canonical product are non-zero"));
+    }
+    out.push(inner);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::normal::equal;
+
+    fn s(name: &str) -> Expr {
+        Expr::symbol(name)
+    }
+    fn n(k: i64) -> Expr {
+        Expr::int(k)
+    }
+    fn prod<const N: usize>(xs: [Expr; N]) -> Expr {
+        Expr::product(xs)
+    }
+    fn sum<const N: usize>(xs: [Expr; N]) -> Expr {
+        Expr::sum(xs)
+    }
+
+    /// `factor_common(input)` is `expected` structurally, and equal to `input` as a function.
+    fn check(input: Expr, expected: Expr) {
+        let got = factor_common(&input);
+        assert_eq!(got, expected, "factor_common({input:?})");
+        assert!(equal(&input, &got), "value changed: {input:?} -> {got:?}");
+    }
+
+    #[test]
+    fn rules() {
+        let (a, b, g, x, y) = (s("a"), s("b"), s("g"), s("x"), s("y"));
+        let (m1, m2, m3) = (s("m1"), s("m2"), s("m3"));
+        let rows = [
+            // The brief's examples.
+            (
+                sum([&m1 * &g, &m2 * &g, &m3 * &g]),
+                prod([sum([m1.clone(), m2.clone(), m3.clone()]), g.clone()]),
+            ),
+            (
+                sum([n(2) * &a * &x, n(4) * &a * &y]),
+                prod([n(2), a.clone(), sum([x.clone(), n(2) * &y])]),
+            ),
+            // Negative leading sum: coefficient -1 times the product.
+            (
+                sum([-(&m1 * &g), -(&m2 * &g)]),
+                prod([n(-1), sum([m1.clone(), m2.clone()]), g.clone()]),
+            ),
+            // A lone content distributes back: nothing to show.
+            (sum([n(2) * &x, n(4) * &y]), sum([n(2) * &x, n(4) * &y])),
+            // Common powers: the smallest; negative powers only when every term has one.
+            (
+                sum([x.pow(3).unwrap() * &a, x.pow(2).unwrap() * &b]),
+                prod([x.pow(2).unwrap(), sum([&a * &x, b.clone()])]),
+            ),
+            (
+                sum([a.div(&x).unwrap(), b.div(&x).unwrap()]),
+                prod([x.pow(-1).unwrap(), sum([a.clone(), b.clone()])]),
+            ),
+            (
+                sum([a.div(&x).unwrap(), b.clone()]),
+                sum([a.div(&x).unwrap(), b.clone()]),
+            ),
+            // Rational content.
+            (
+                sum([
+                    Expr::frac(1, 2).unwrap() * &a * &x,
+                    Expr::frac(1, 3).unwrap() * &a * &y,
+                ]),
+                prod([
+                    Expr::frac(1, 6).unwrap(),
+                    a.clone(),
+                    sum([n(3) * &x, n(2) * &y]),
+                ]),
+            ),
+            // A constant term blocks the monomial.
+            (sum([&a * &x, n(1)]), sum([&a * &x, n(1)])),
+            // Recursively inside: a sum as a factor, and inside a function.
+            (
+                prod([y.clone(), sum([&a * &g, &b * &g])]),
+                prod([sum([a.clone(), b.clone()]), g.clone(), y.clone()]),
+            ),
+            (
+                sum([x.clone(), prod([y.clone(), sum([&a * &g, &b * &g])])]),
+                sum([
+                    x.clone(),
+                    prod([sum([a.clone(), b.clone()]), g.clone(), y.clone()]),
+                ]),
+            ),
+            // Only what every term shares: no partial grouping.
+            (
+                sum([&a * &g, &b * &g, x.clone()]),
+                sum([&a * &g, &b * &g, x.clone()]),
+            ),
+            (
+                Expr::sin(&sum([&a * &x, &b * &x])),
+                Expr::sin(&prod([sum([a.clone(), b.clone()]), x.clone()])),
+            ),
+            // Atoms and single terms are left alone.
+            (n(5), n(5)),
+            (n(3) * &a * &x, n(3) * &a * &x),
+        ];
+        for (input, expected) in rows {
+            check(input, expected);
+        }
+    }
+
+    #[test]
+    fn factor_list_keeps_the_content_for_the_caller() {
+        let (x, y, k) = (s("x"), s("y"), Expr::qdd(1));
+        let parts = factor_list(&(n(2) * &x + n(4) * &y));
+        assert_eq!(parts, vec![n(2), sum([x.clone(), n(2) * &y])]);
+        let with_key = Expr::product(parts.into_iter().chain([k.clone()]));
+        assert_eq!(with_key, prod([n(2), sum([x, n(2) * &y]), k]));
+    }
+}

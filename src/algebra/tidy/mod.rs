@@ -1,0 +1,146 @@
+//! Display-oriented simplification: the house style of the textbooks from the expanded normal form.
+//!
+//! The normal form ([`crate::algebra::normal`]) is expanded: `m1 g + m2 g + m3 g`,
+//! `cos q2 cos q3 − sin q2 sin q3`. The functions here rewrite it the way Spong, Hutchinson and
+//! Vidyasagar print dynamics (*Robot Modeling and Control*, ch. 7). Each is a pure function whose
+//! result is equal to its input as a function ([`crate::algebra::normal::equal`]); none is needed for
+//! correctness, only for reading.
+//!
+//! The rules, one example each (each is a row of a `check` table in its file):
+//! - [`factor_common`]: the common monomial and rational content of a sum come out:
+//!   `m1 g + m2 g + m3 g` is `(m1 + m2 + m3) g`, `2 a x + 4 a y` is `2 a (x + 2 y)`,
+//!   `−m1 g − m2 g` is `−(m1 + m2) g`;
+//! - [`contract_trig`]: angle sums come back: `cos q2 cos q3 − sin q2 sin q3` is `cos(q2 + q3)`,
+//!   `sin q2 cos q3 + cos q2 sin q3` is `sin(q2 + q3)`, and `a − a cos² q2` is `a sin² q2`;
+//!   `2 sin q cos q` stays;
+//! - [`collect()`]: terms grouped by a key monomial: `m1 q̈1 + m2 q̈1 + m1 g` by accelerations is
+//!   `[(q̈1, m1 + m2), (1, m1 g)]`;
+//! - [`group()`]: partial grouping by trig monomial or by leading parameter:
+//!   `m2 l1² + m2 lc2² + I2` by [`Grouping::Leading`] is `m2 (l1² + lc2²) + I2`;
+//! - [`tidy`]: normal form, then [`contract_trig`], then one [`factor_common`] per trig group:
+//!   `m1 g cos q1 + m2 g cos q1 + m2 g (cos q1 cos q2 − sin q1 sin q2)` is
+//!   `(m1 + m2) g cos q1 + m2 g cos(q1 + q2)`;
+//! - [`equation_terms`]: the ordered display terms of an equation side: `q̈` terms, `q̇`-product
+//!   terms, the rest by trig monomial.
+//!
+//! Rules are named data ([`rule::Rule`], [`contract::ANGLE_IDENTITIES`]) composed by a fixpoint with a
+//! limit; each rule merges two terms into one, so it shrinks the sum. Everything is deterministic:
+//! candidates are visited in the canonical order of [`Expr`], never in hash order, and [`tidy`] starts
+//! from the normal form, so inputs equal as functions give identical outputs.
+//!
+//! Known limits: squares of angle sums are not recovered (`cos²(q2 + q3)` comes back as
+//! `2 cos(q2 + q3) cos q2 cos q3 + sin² q2 − cos² q3`, equal but longer), double angles stay expanded
+//! (`cos(2 q1 + q2)` is `2 cos(q1 + q2) cos q1 − cos q2`), and the greedy pairing keeps the first
+//! match in canonical order, not the globally shortest result.
+
+pub mod collect;
+pub mod contract;
+pub mod equation;
+pub mod factor;
+pub mod group;
+pub mod pythagoras;
+pub mod rule;
+
+#[cfg(test)]
+mod proptests;
+
+pub use collect::{collect, collect_with, KeyClass};
+pub use contract::contract_trig;
+pub use equation::equation_terms;
+pub use factor::{factor_common, factor_list};
+pub use group::{group, Grouping};
+
+use crate::algebra::expr::Expr;
+
+/// The display form of `e`: its normal form with angle sums contracted, the terms grouped by trig
+/// monomial and each group factored. Equal to `e` as a function; equal inputs give identical outputs.
+///
+/// `m1 g cos(q1) + m2 g cos(q1)` gives `(m1 + m2) g cos(q1)`.
+pub fn tidy(e: &Expr) -> Expr {
+    tidy_by(e, Grouping::Trig)
+}
+
+/// [`tidy`] with another [`Grouping`]: [`Grouping::Leading`] is the habit for inertia entries,
+/// `m1 lc1² + m2 (l1² + lc2² + 2 l1 lc2 cos q2) + I1 + I2`.
+pub fn tidy_by(e: &Expr, grouping: Grouping) -> Expr {
+    group(&contract_trig(e), grouping)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::normal::equal;
+
+    fn s(name: &str) -> Expr {
+        Expr::symbol(name)
+    }
+
+    /// `tidy(input)` is `expected` structurally, equal to `input`, and a fixpoint of `tidy`.
+    fn check(input: Expr, expected: Expr) {
+        let got = tidy(&input);
+        assert_eq!(got, expected, "tidy({input:?})");
+        assert!(equal(&input, &got), "value changed: {input:?} -> {got:?}");
+        assert_eq!(tidy(&got), got, "tidy is not idempotent on {input:?}");
+    }
+
+    #[test]
+    fn rules() {
+        let (g, m1, m2, m3) = (s("g"), s("m1"), s("m2"), s("m3"));
+        let (q1, q2) = (Expr::q(1), Expr::q(2));
+        let (c1, c2, s1, s2) = (
+            Expr::cos(&q1),
+            Expr::cos(&q2),
+            Expr::sin(&q1),
+            Expr::sin(&q2),
+        );
+        let rows = [
+            // PPP gravity.
+            (
+                Expr::sum([&m1 * &g, &m2 * &g, &m3 * &g]),
+                Expr::product([Expr::sum([m1.clone(), m2.clone(), m3.clone()]), g.clone()]),
+            ),
+            // The module example: contraction, then one factor per trig group.
+            (
+                &m1 * &g * &c1 + &m2 * &g * &c1 + &m2 * &g * (&c1 * &c2 - &s1 * &s2),
+                Expr::product([&m1 + &m2, g.clone(), c1.clone()])
+                    + &m2 * &g * Expr::cos(&(&q1 + &q2)),
+            ),
+            // A negative group.
+            (
+                -(&m1 * &g * &s1) - &m2 * &g * &s1,
+                Expr::product([Expr::int(-1), &m1 + &m2, g.clone(), s1.clone()]),
+            ),
+            // Already tidy, and factored input comes out the same as expanded input.
+            (
+                Expr::product([&m1 + &m2, g.clone()]),
+                Expr::product([&m1 + &m2, g.clone()]),
+            ),
+            (Expr::int(2) * &s1 * &c1, Expr::int(2) * &s1 * &c1),
+            (Expr::zero(), Expr::zero()),
+        ];
+        for (input, expected) in rows {
+            check(input, expected);
+        }
+    }
+
+    #[test]
+    fn tidy_by_leading_parameter() {
+        let (m2, l1, lc2, i2) = (s("m2"), s("l1"), s("lc2"), s("I2"));
+        let c2 = Expr::cos(&Expr::q(2));
+        // Spong's d12, expanded.
+        let d12 = &m2 * lc2.pow(2).unwrap() + &m2 * &l1 * &lc2 * &c2 + &i2;
+        let want = Expr::product([m2.clone(), lc2.clone(), &lc2 + &l1 * &c2]) + &i2;
+        assert_eq!(tidy_by(&d12, Grouping::Leading), want);
+        assert!(equal(&d12, &want));
+    }
+
+    #[test]
+    fn equal_inputs_give_identical_outputs() {
+        let (a, b) = (s("a"), s("b"));
+        let (q1, q2) = (Expr::q(1), Expr::q(2));
+        let x = &a * Expr::cos(&(&q1 + &q2)) + &b * Expr::sin(&q1).pow(2).unwrap();
+        let y = &a * (Expr::cos(&q1) * Expr::cos(&q2) - Expr::sin(&q1) * Expr::sin(&q2)) + &b
+            - &b * Expr::cos(&q1).pow(2).unwrap();
+        assert_eq!(tidy(&x), tidy(&y));
+    }
+}
