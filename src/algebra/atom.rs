@@ -124,14 +124,15 @@ pub fn cos(x: &Symbol) -> AtomId {
     make(Class::Cos, serial_of(Atom::Sym(x.clone())))
 }
 
-/// The id of `sin c` for a rational constant angle `c > 0` (its partner is `cos c`).
-pub fn sin_const(c: &super::number::Rational) -> AtomId {
-    make(Class::Sin, serial_of(Atom::Other(Expr::num(c.clone()))))
+/// The id of `sin c` for a constant angle `c` (a positive rational, or `r π` with `0 < r < 1/4`);
+/// its partner is `cos c`.
+pub fn sin_const(c: &Expr) -> AtomId {
+    make(Class::Sin, serial_of(Atom::Other(c.clone())))
 }
 
-/// The id of `cos c` for a rational constant angle `c > 0`.
-pub fn cos_const(c: &super::number::Rational) -> AtomId {
-    make(Class::Cos, serial_of(Atom::Other(Expr::num(c.clone()))))
+/// The id of `cos c` for a constant angle `c`.
+pub fn cos_const(c: &Expr) -> AtomId {
+    make(Class::Cos, serial_of(Atom::Other(c.clone())))
 }
 
 /// The id of an opaque expression.

@@ -315,18 +315,16 @@ impl Expr {
                 Kind::Mul(c, fs) => {
                     coeff = &coeff * c;
                     for (b, k) in fs {
-                        let (b, flip) = sign_normal_base(b);
-                        if flip && k % 2 != 0 {
-                            coeff = -coeff;
+                        let (b, content) = primitive_base(b);
+                        if !content.is_one() {
+                            coeff = &coeff * &content.pow(*k).expect("non-zero content");
                         }
                         *bases.entry(b).or_insert(0) += k;
                     }
                 }
                 _ => {
-                    let (b, flip) = sign_normal_base(&item);
-                    if flip {
-                        coeff = -coeff;
-                    }
+                    let (b, content) = primitive_base(&item);
+                    coeff = &coeff * &content;
                     *bases.entry(b).or_insert(0) += 1
                 }
             }
@@ -540,12 +538,23 @@ impl Expr {
     }
 }
 
-/// A sum used as a base reads positive: `(b − a)^k` is stored as `(−1)^k (a − b)^k`. Returns the base
-/// and whether it was negated.
-fn sign_normal_base(b: &Expr) -> (Expr, bool) {
+/// A sum used as a base is primitive and reads positive: its coefficients have no common rational
+/// factor and its leading one is positive, so `(2 b − 2 a)^k` is stored as `(−2)^k (a − b)^k`. Returns
+/// the base and the factor taken out.
+fn primitive_base(b: &Expr) -> (Expr, Rational) {
     match b.kind() {
-        Kind::Add(..) if b.reads_negative() => (-b, true),
-        _ => (b.clone(), false),
+        Kind::Add(c, ts) => {
+            let mut content = ts.iter().fold(c.abs(), |g, (_, k)| g.gcd(k));
+            if b.reads_negative() {
+                content = -content;
+            }
+            if content.is_one() || content.is_zero() {
+                return (b.clone(), Rational::one());
+            }
+            let inv = content.recip().expect("non-zero content");
+            (b.scale(&inv), content)
+        }
+        _ => (b.clone(), Rational::one()),
     }
 }
 
@@ -834,6 +843,16 @@ mod tests {
         let p2 = Expr::product(names.iter().rev().map(|n| Expr::symbol(n)));
         assert_eq!(p1, p2);
         assert_eq!(p1.cmp(&p2), Ordering::Equal);
+    }
+
+    #[test]
+    fn sums_as_bases_are_primitive() {
+        let (m, q) = (Expr::symbol("m1"), Expr::q(1));
+        let a = (&(Expr::int(2) * &m) + &Expr::int(2)) * &q;
+        let b = Expr::product([Expr::int(2), &m + &Expr::one(), q.clone()]);
+        assert_eq!(a, b);
+        let half = (&(&m * &Expr::frac(1, 2).unwrap()) + &Expr::one()).pow(-1).unwrap();
+        assert_eq!(half, (&m + &Expr::int(2)).pow(-1).unwrap() * Expr::int(2));
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //!
 //! - [`expr`]: the canonical [`Expr`] and its constructors; [`number`], [`symbol`]: its leaves.
 //! - [`poly`], [`atom`], [`normal`]: the polynomial normal form and the zero test.
-//! - [`calculus`]: `∂/∂x` and `d/dt`; [`subs`], [`eval`]: substitution and numbers.
+//! - [`calculus`]: `∂/∂x` and `d/dt`; [`mod@subs`], [`eval`]: substitution and numbers.
 
 pub mod atom;
 pub mod calculus;

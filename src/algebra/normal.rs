@@ -135,10 +135,13 @@ fn constant_angle(k: &Expr) -> (Poly, Poly) {
         }
     }
     let pi_part = Expr::sum(rest);
-    let (sr, cr) = if pi_part.is_zero() {
-        (Poly::zero(), Poly::one())
-    } else {
-        (to_poly(&Expr::sin(&pi_part)), to_poly(&Expr::cos(&pi_part)))
+    let (sr, cr) = match pi_part
+        .as_rational()
+        .cloned()
+        .or_else(|| pi_multiple(&pi_part))
+    {
+        Some(r) => pi_pair(&r),
+        None => (Poly::zero(), Poly::one()),
     };
     if c.is_zero() {
         return (sr, cr);
@@ -148,10 +151,68 @@ fn constant_angle(k: &Expr) -> (Poly, Poly) {
     } else {
         Rational::one()
     };
-    let c = c.abs();
+    let c = Expr::num(c.abs());
     let sc = Poly::atom(atom::sin_const(&c)).scale(&sign);
     let cc = Poly::atom(atom::cos_const(&c));
     (sc.mul(&cr).add(&cc.mul(&sr)), cc.mul(&cr).sub(&sc.mul(&sr)))
+}
+
+/// `r` for an expression `r π`.
+fn pi_multiple(e: &Expr) -> Option<Rational> {
+    match e.kind() {
+        Kind::Pi => Some(Rational::one()),
+        Kind::Mul(c, fs) if fs.len() == 1 && fs[0].1 == 1 && matches!(fs[0].0.kind(), Kind::Pi) => {
+            Some(c.clone())
+        }
+        _ => None,
+    }
+}
+
+/// `(sin r π, cos r π)`: exact values where the table has them, otherwise `±sin b π`, `±cos b π` of the
+/// base angle `b` in `(0, 1/4)` reached by the quadrant and complement identities, as a related atom
+/// pair (so `sin²(π/5) + cos²(π/5)` is 1 and `cos(3π/10)` is `sin(π/5)`).
+fn pi_pair(r: &Rational) -> (Poly, Poly) {
+    let angle = &Expr::pi() * &Expr::num(r.clone());
+    let (s, c) = (Expr::sin(&angle), Expr::cos(&angle));
+    let is_value = |e: &Expr| e.symbols().is_empty() && !has_fun(e);
+    if is_value(&s) && is_value(&c) {
+        return (to_poly(&s), to_poly(&c));
+    }
+    // r mod 2 in [0, 2), then the quadrant k and the rest t in [0, 1/2).
+    let half = Rational::new(1, 2).expect("non-zero");
+    let two = Rational::int(2);
+    let turns = num_integer::Integer::div_floor(&r.numer(), &(r.denom() * 2));
+    let r0 = r - &(&two * &Rational::from(turns));
+    let quadrants = num_integer::Integer::div_floor(&(&r0 * &two).numer(), &(&r0 * &two).denom());
+    let k = num_traits::ToPrimitive::to_i64(&quadrants).unwrap_or(0);
+    let t = &r0 - &(&half * &Rational::int(k));
+    let quarter = Rational::new(1, 4).expect("non-zero");
+    let (b, swap) = if t > quarter {
+        (&half - &t, true)
+    } else {
+        (t, false)
+    };
+    let base = &Expr::pi() * &Expr::num(b);
+    let (sb, cb) = (
+        Poly::atom(atom::sin_const(&base)),
+        Poly::atom(atom::cos_const(&base)),
+    );
+    let (st, ct) = if swap { (cb, sb) } else { (sb, cb) };
+    match k {
+        0 => (st, ct),
+        1 => (ct, st.neg()),
+        2 => (st.neg(), ct.neg()),
+        _ => (ct.neg(), st),
+    }
+}
+
+fn has_fun(e: &Expr) -> bool {
+    match e.kind() {
+        Kind::Fun(..) => true,
+        Kind::Add(_, ts) => ts.iter().any(|(t, _)| has_fun(t)),
+        Kind::Mul(_, fs) => fs.iter().any(|(b, _)| has_fun(b)),
+        _ => false,
+    }
 }
 
 /// `(sin n x, cos n x)` as polynomials in `sin x`, `cos x`.
@@ -241,6 +302,18 @@ mod tests {
         let expanded = Expr::sin(&q(1)) * Expr::cos(&Expr::frac(2, 3).unwrap())
             + Expr::cos(&q(1)) * Expr::sin(&Expr::frac(2, 3).unwrap());
         assert!(equal(&shifted, &expanded));
+    }
+
+    #[test]
+    fn multiples_of_pi_without_table_values() {
+        let pi = |n, d| Expr::pi() * Expr::frac(n, d).unwrap();
+        let e = Expr::sin(&pi(1, 5)).pow(2).unwrap() + Expr::cos(&pi(1, 5)).pow(2).unwrap();
+        assert!(normal_form(&e).is_one());
+        assert!(equal(&Expr::cos(&pi(3, 10)), &Expr::sin(&pi(1, 5))));
+        assert!(equal(&Expr::sin(&pi(-7, 5)), &Expr::sin(&pi(3, 5))));
+        let a = Expr::sin(&(q(1) + pi(1, 5))).pow(2).unwrap();
+        let b = Expr::one() - Expr::cos(&(q(1) + pi(1, 5))).pow(2).unwrap();
+        assert!(equal(&a, &b));
     }
 
     #[test]

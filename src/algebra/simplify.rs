@@ -4,9 +4,9 @@
 //! the display rewrites are deterministic functions of it.
 
 use super::expr::Expr;
-use super::normal::normal_form;
+use super::tidy::tidy;
 
 /// The simplified form of `e` for display: `sin(q1)^2 + cos(q1)^2` is `1`, `1/3 + 1/6` is `1/2`.
 pub fn simplify(e: &Expr) -> Expr {
-    normal_form(e)
+    tidy(e)
 }

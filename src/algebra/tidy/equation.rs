@@ -4,7 +4,7 @@
 //! [`equation_terms`] expands the side, then
 //! 1. collects it by the accelerations: one term `d_kj q̈_j` per coordinate `j`, by index;
 //! 2. collects what is left by the products of velocities: `q̇1²`, `q̇1 q̇2`, `q̇2²`, …;
-//! 3. splits the rest (gravity, springs) into groups by trig monomial, in canonical order.
+//! 3. splits the rest (gravity, springs) into groups by trig monomial, simpler trig parts first.
 //!
 //! The coefficients of 1. and 2. are contracted ([`super::contract_trig`]), grouped by leading
 //! parameter (the masses, [`super::Grouping::Leading`]) and factored; the groups of 3. are contracted
@@ -38,10 +38,24 @@ pub fn equation_terms(lhs: &Expr) -> Vec<Expr> {
         }
         rest = left;
     }
-    // The canonical order of the sum's terms: the order a printer shows `tidy(rest)` in.
-    let others = group(&contract_trig(&rest), Grouping::Trig).terms();
-    out.extend(others.into_iter().map(|(t, c)| t.scale(&c)));
+    // Simpler trig parts first (`… cos(q1) + … cos(q1+q2)`, as Spong writes φ1), then canonical order.
+    let mut others: Vec<Expr> = group(&contract_trig(&rest), Grouping::Trig)
+        .terms()
+        .into_iter()
+        .map(|(t, c)| t.scale(&c))
+        .collect();
+    others.sort_by_key(trig_size);
+    out.extend(others);
     out
+}
+
+/// The size of the trig factors of a term (0 for none).
+fn trig_size(term: &Expr) -> usize {
+    term.factors()
+        .iter()
+        .filter(|(b, _)| matches!(b.kind(), crate::algebra::expr::Kind::Fun(..)))
+        .map(|(b, _)| b.node_count())
+        .sum()
 }
 
 #[cfg(test)]
