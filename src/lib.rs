@@ -12,3 +12,4 @@ pub mod algebra;
 pub mod dynamics;
 pub mod parse;
 pub mod print;
+pub mod report;

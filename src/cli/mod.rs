@@ -2,6 +2,7 @@
 //! tests can drive `run` exactly as the binary does.
 
 mod algebra_cmds;
+mod derive_cmds;
 mod error;
 
 pub use error::CliError;
@@ -20,6 +21,29 @@ pub struct Args {
 /// The commands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// Derive the equations of motion of a scene (default: the built-in PPP arm of Spong et al. 7.7).
+    Derive {
+        /// The scene file.
+        scene: Option<String>,
+        /// The formulation.
+        #[arg(long, value_enum, default_value = "lagrange")]
+        method: derive_cmds::MethodArg,
+        /// The frame of the Newton–Euler recursion.
+        #[arg(long, value_enum, default_value = "body")]
+        frame: derive_cmds::FrameArg,
+        /// The output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: derive_cmds::Format,
+        /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
+        #[arg(long)]
+        ascii: bool,
+    },
+    /// Prove that Euler–Lagrange and Newton–Euler (both frames) agree, that D(q) is symmetric and that
+    /// Ḋ − 2C is skew-symmetric; exit non-zero if any claim fails.
+    Check {
+        /// The scene file.
+        scene: Option<String>,
+    },
     /// Simplify an expression to its normal form, then tidy it for display.
     Simplify {
         /// The expression, e.g. "sin(q1)^2 + cos(q1)^2".
@@ -79,6 +103,14 @@ pub enum Command {
 /// Runs one command and returns what it prints.
 pub fn run(args: Args) -> Result<String, CliError> {
     match args.command {
+        Command::Derive {
+            scene,
+            method,
+            frame,
+            format,
+            ascii,
+        } => derive_cmds::derive(scene.as_deref(), method, frame, format, ascii),
+        Command::Check { scene } => derive_cmds::check_cmd(scene.as_deref()),
         Command::Simplify { expr, ascii } => algebra_cmds::simplify(&expr, ascii),
         Command::Diff { expr, vars, ascii } => algebra_cmds::diff(&expr, &vars, ascii),
         Command::Dt { expr, ascii } => algebra_cmds::dt(&expr, ascii),

@@ -1,0 +1,96 @@
+//! `symdyn derive` and `symdyn check`: load a scene (the built-in PPP when none is named), derive, and
+//! print. Warnings go to stderr; the output is the report.
+
+use super::CliError;
+use symdyn::dynamics::check::check;
+use symdyn::dynamics::{Derivation, Frame};
+use symdyn::parse::{parse_scene, BUILTIN_PPP};
+use symdyn::print::Style;
+use symdyn::report::{self, Method};
+
+/// Output formats of `derive`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Unicode text, one equation per line.
+    Text,
+    /// A LaTeX `align*` environment.
+    Latex,
+    /// A JSON document (expressions in parser-readable ASCII).
+    Json,
+}
+
+/// `--method`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum MethodArg {
+    /// Euler–Lagrange.
+    Lagrange,
+    /// Recursive Newton–Euler.
+    NewtonEuler,
+}
+
+/// `--frame`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FrameArg {
+    /// Body-fixed frames.
+    Body,
+    /// The inertial frame.
+    Inertial,
+}
+
+/// Reads and parses the scene, printing its warnings to stderr.
+fn load(path: Option<&str>) -> Result<Derivation, CliError> {
+    let (name, source) = match path {
+        Some(p) => (
+            p.to_string(),
+            std::fs::read_to_string(p).map_err(|source| CliError::Io {
+                path: p.to_string(),
+                source,
+            })?,
+        ),
+        None => ("<built-in ppp.scene>".to_string(), BUILTIN_PPP.to_string()),
+    };
+    let scene = parse_scene(&source).map_err(|e| CliError::Input(format!("error: {}", e.render(&name))))?;
+    for w in &scene.warnings {
+        eprintln!("warning: {}", w.render(&name));
+    }
+    Derivation::new(scene.robot).map_err(|e| CliError::Input(format!("error: {name}: {e}")))
+}
+
+/// `symdyn derive`.
+pub fn derive(
+    scene: Option<&str>,
+    method: MethodArg,
+    frame: FrameArg,
+    format: Format,
+    ascii: bool,
+) -> Result<String, CliError> {
+    let der = load(scene)?;
+    let frame = match frame {
+        FrameArg::Body => Frame::Body,
+        FrameArg::Inertial => Frame::Inertial,
+    };
+    let method = match method {
+        MethodArg::Lagrange => Method::Lagrange,
+        MethodArg::NewtonEuler => Method::NewtonEuler(frame),
+    };
+    Ok(match format {
+        Format::Text => report::equations(&der, method, if ascii { Style::Ascii } else { Style::Text }),
+        Format::Latex => report::equations(&der, method, Style::Latex),
+        Format::Json => {
+            let doc = report::json(&der, method);
+            format!("{}\n", serde_json::to_string_pretty(&doc).expect("JSON values serialise"))
+        }
+    })
+}
+
+/// `symdyn check`: exits non-zero when any claim fails.
+pub fn check_cmd(scene: Option<&str>) -> Result<String, CliError> {
+    let der = load(scene)?;
+    let claims = check(&der);
+    let text = report::check_report(&der.robot().name, &claims);
+    if claims.iter().all(|c| c.holds) {
+        Ok(text)
+    } else {
+        Err(CliError::CheckFailed(text))
+    }
+}
