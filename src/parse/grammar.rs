@@ -1,13 +1,15 @@
-//! The pest parser generated from `grammar/expr.pest`, and the words a user reads for its rules.
+//! The pest parser generated from `grammar/expr.pest` and `grammar/scene.pest`, and the words a user
+//! reads for the expression rules.
 //!
-//! The scene grammar will be added to the same struct (a second `#[grammar = ...]` attribute) and reuse
-//! the rule `expr`; rules that are not part of expressions have no words here.
+//! The scene grammar is the second `#[grammar = ...]` attribute of the same struct, so that it reuses
+//! the rule `expr`; its own rules have no words here (the scene's are in `scene/error.rs`).
 
 use pest_derive::Parser;
 
 /// The generated parser; its rules are the enum `Rule`.
 #[derive(Parser)]
 #[grammar = "../grammar/expr.pest"]
+#[grammar = "../grammar/scene.pest"]
 pub(crate) struct Grammar;
 
 /// What a parse error says was expected at its position, in a user's words.

@@ -1,14 +1,18 @@
-//! Reading expressions: text such as `2 m2 lc2^2 sin(q2)` into a canonical [`Expr`].
+//! Reading expressions and scenes: text such as `2 m2 lc2^2 sin(q2)` into a canonical [`Expr`], and a
+//! scene file into a [`Robot`](crate::dynamics::Robot) ([`parse_scene`]).
 //!
-//! The grammar is `grammar/expr.pest` (module `grammar`); `lower` turns pest's pairs into `Expr` with
-//! a Pratt parser that holds the operators' precedence; `error` renders failures with a line, a column
-//! and a caret. Parsing user input never panics: nesting is capped ([`MAX_DEPTH`]), numbers and
-//! exponents are bounded, and every failure is a [`ParseError`].
+//! The grammars are `grammar/expr.pest` and `grammar/scene.pest`, one parser (module `grammar`);
+//! `lower` turns an expression's pairs into `Expr` with a Pratt parser that holds the operators'
+//! precedence; `error` renders failures with a line, a column and a caret; `scene` reads scenes line by
+//! line, reusing `lower` for every value. Parsing user input never panics: nesting is capped
+//! ([`MAX_DEPTH`]), numbers and exponents are bounded, and every failure is a [`ParseError`] or a
+//! [`SceneError`].
 
 mod error;
 pub(crate) mod grammar;
 pub(crate) mod lower;
 mod names;
+pub mod scene;
 
 use crate::algebra::Expr;
 use grammar::{Grammar, Rule};
@@ -16,6 +20,11 @@ use pest::Parser;
 
 pub use error::{ParseError, ParseErrorKind};
 pub use grammar::Expected;
+pub use scene::{parse_scene, Scene, SceneError, SceneErrorKind, SceneExpected, SceneWarning};
+
+/// The scene the `symdyn` binary reads when given none: Spong et al., Problem 7.7, the 3-link
+/// Cartesian (PPP) manipulator (`examples/ppp.scene`).
+pub const BUILTIN_PPP: &str = include_str!("../../examples/ppp.scene");
 
 /// The deepest nesting accepted: levels of parentheses (and calls), plus chains of signs and powers.
 pub const MAX_DEPTH: usize = 256;
