@@ -15,13 +15,27 @@ fn scene(name: &str) -> symdyn::dynamics::Robot {
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("derive");
     group.sample_size(10);
-    for name in ["ppp", "elbow", "rpp", "scara", "stanford", "puma560", "puma560_symbolic"] {
+    for name in [
+        "ppp",
+        "elbow",
+        "rpp",
+        "scara",
+        "stanford",
+        "puma560",
+        "puma560_symbolic",
+    ] {
         let robot = scene(name);
         group.bench_function(format!("{name}: Euler–Lagrange"), |b| {
             b.iter(|| Derivation::new(robot.clone()).unwrap().lagrange().tau.len())
         });
         group.bench_function(format!("{name}: Newton–Euler (body)"), |b| {
-            b.iter(|| Derivation::new(robot.clone()).unwrap().newton_euler(Frame::Body).tau.len())
+            b.iter(|| {
+                Derivation::new(robot.clone())
+                    .unwrap()
+                    .newton_euler(Frame::Body)
+                    .tau
+                    .len()
+            })
         });
         group.bench_function(format!("{name}: both and the proof"), |b| {
             b.iter(|| check(&Derivation::new(robot.clone()).unwrap()).len())

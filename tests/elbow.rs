@@ -1,6 +1,9 @@
 //! The two-link planar elbow arm of Spong, Hutchinson and Vidyasagar, ch. 7 (§7.4.2), against its
 //! closed form written out here: the inertia matrix, the Christoffel symbols and the gravity terms.
 
+// Index loops follow the book's d_kj and c_ijk.
+#![allow(clippy::needless_range_loop)]
+
 use symdyn::algebra::{equal, Expr};
 use symdyn::dynamics::inertia::diag;
 use symdyn::dynamics::{Convention, Derivation, Joint, JointKind, Link, Robot};

@@ -851,7 +851,9 @@ mod tests {
         let a = (&(Expr::int(2) * &m) + &Expr::int(2)) * &q;
         let b = Expr::product([Expr::int(2), &m + &Expr::one(), q.clone()]);
         assert_eq!(a, b);
-        let half = (&(&m * &Expr::frac(1, 2).unwrap()) + &Expr::one()).pow(-1).unwrap();
+        let half = (&(&m * &Expr::frac(1, 2).unwrap()) + &Expr::one())
+            .pow(-1)
+            .unwrap();
         assert_eq!(half, (&m + &Expr::int(2)).pow(-1).unwrap() * Expr::int(2));
     }
 

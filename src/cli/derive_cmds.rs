@@ -49,7 +49,8 @@ fn load(path: Option<&str>) -> Result<Derivation, CliError> {
         ),
         None => ("<built-in ppp.scene>".to_string(), BUILTIN_PPP.to_string()),
     };
-    let scene = parse_scene(&source).map_err(|e| CliError::Input(format!("error: {}", e.render(&name))))?;
+    let scene =
+        parse_scene(&source).map_err(|e| CliError::Input(format!("error: {}", e.render(&name))))?;
     for w in &scene.warnings {
         eprintln!("warning: {}", w.render(&name));
     }
@@ -74,11 +75,16 @@ pub fn derive(
         MethodArg::NewtonEuler => Method::NewtonEuler(frame),
     };
     Ok(match format {
-        Format::Text => report::equations(&der, method, if ascii { Style::Ascii } else { Style::Text }),
+        Format::Text => {
+            report::equations(&der, method, if ascii { Style::Ascii } else { Style::Text })
+        }
         Format::Latex => report::equations(&der, method, Style::Latex),
         Format::Json => {
             let doc = report::json(&der, method);
-            format!("{}\n", serde_json::to_string_pretty(&doc).expect("JSON values serialise"))
+            format!(
+                "{}\n",
+                serde_json::to_string_pretty(&doc).expect("JSON values serialise")
+            )
         }
     })
 }

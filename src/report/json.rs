@@ -24,7 +24,11 @@ fn ascii(p: &Poly) -> Value {
 }
 
 fn matrix(m: &[Vec<Poly>]) -> Value {
-    Value::Array(m.iter().map(|r| Value::Array(r.iter().map(ascii).collect())).collect())
+    Value::Array(
+        m.iter()
+            .map(|r| Value::Array(r.iter().map(ascii).collect()))
+            .collect(),
+    )
 }
 
 /// The JSON document of a derivation.
@@ -65,4 +69,3 @@ pub fn json(der: &Derivation, method: Method) -> Value {
         "warnings": der.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
     })
 }
-

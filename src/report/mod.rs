@@ -47,7 +47,10 @@ pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
     match style {
         Style::Latex => {
             let body: Vec<String> = lines.iter().map(|(l, r)| format!("  {l} &= {r}")).collect();
-            format!("\\begin{{align*}}\n{}\n\\end{{align*}}\n", body.join(" \\\\\n"))
+            format!(
+                "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+                body.join(" \\\\\n")
+            )
         }
         Style::Text | Style::Ascii => lines.iter().map(|(l, r)| format!("{l} = {r}\n")).collect(),
     }
