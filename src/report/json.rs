@@ -64,7 +64,7 @@ pub fn json(der: &Derivation, method: Method) -> Value {
         "gravity": el.g.iter().map(ascii).collect::<Vec<_>>(),
         "potential": ascii(&el.p),
         "equations": equations,
-        "tau": tau.iter().map(|t| Value::String(print::to_string(&simplify(&t.to_expr()), Style::Ascii))).collect::<Vec<_>>(),
+        "tau": tau.iter().map(|t| print::sum_to_string(&lhs_terms(t), Style::Ascii)).collect::<Vec<_>>(),
         "facts": der.facts().iter().map(|f| f.to_string()).collect::<Vec<_>>(),
         "warnings": der.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
     })
