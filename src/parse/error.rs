@@ -7,6 +7,7 @@
 //! ```
 
 use super::grammar::{Expected, Rule};
+use super::location::{floor_boundary, Location};
 use super::names;
 use super::MAX_DEPTH;
 use crate::algebra::AlgebraError;
@@ -86,46 +87,19 @@ pub struct ParseError(Box<Located>);
 
 /// The contents of a [`ParseError`].
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
-#[error("line {line}, column {column}: {kind}\n{excerpt}")]
+#[error("line {}, column {}: {kind}\n{}", at.line, at.column, at.excerpt)]
 struct Located {
     kind: ParseErrorKind,
-    span: Range<usize>,
-    line: usize,
-    column: usize,
-    excerpt: String,
+    at: Location,
 }
 
 impl ParseError {
     /// An error of `kind` at the byte range `span` of `source` (the whole text that was parsed, so
     /// that the line and column are counted from its start).
     pub fn new(kind: ParseErrorKind, source: &str, span: Range<usize>) -> ParseError {
-        let start = floor_boundary(source, span.start.min(source.len()));
-        let line_start = source[..start].rfind('\n').map_or(0, |i| i + 1);
-        let line_end = source[start..]
-            .find('\n')
-            .map_or(source.len(), |i| start + i);
-        let end = floor_boundary(source, span.end.clamp(start, line_end));
-        let before = &source[line_start..start];
-        let line = source[..start].matches('\n').count() + 1;
-        let column = before.chars().count() + 1;
-        let pad: String = before
-            .chars()
-            .filter(|&c| !is_zero_width(c))
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
-            .collect();
-        let width = source[start..end]
-            .chars()
-            .filter(|&c| !is_zero_width(c))
-            .count()
-            .max(1);
-        let text = source[line_start..line_end].trim_end_matches('\r');
-        let excerpt = format!("  {text}\n  {pad}{}", "^".repeat(width));
         ParseError(Box::new(Located {
             kind,
-            span: start..end,
-            line,
-            column,
-            excerpt,
+            at: Location::new(source, span),
         }))
     }
 
@@ -136,46 +110,26 @@ impl ParseError {
 
     /// The offending text, as a byte range of the source.
     pub fn span(&self) -> Range<usize> {
-        self.0.span.clone()
+        self.0.at.span.clone()
     }
 
     /// The line, from 1.
     pub fn line(&self) -> usize {
-        self.0.line
+        self.0.at.line
     }
 
     /// The column, from 1, counted in characters.
     pub fn column(&self) -> usize {
-        self.0.column
+        self.0.at.column
     }
 
     /// The error as a compiler prints it: `file:line:column: message`, then the line and the caret.
     pub fn render(&self, source_name: &str) -> String {
         format!(
             "{source_name}:{}:{}: {}\n{}",
-            self.0.line, self.0.column, self.0.kind, self.0.excerpt
+            self.0.at.line, self.0.at.column, self.0.kind, self.0.at.excerpt
         )
     }
-}
-
-/// The largest char boundary at or below `i`.
-fn floor_boundary(s: &str, mut i: usize) -> usize {
-    while !s.is_char_boundary(i) {
-        i -= 1;
-    }
-    i
-}
-
-/// Combining marks take no column of their own on a terminal (`q̇` is two characters, one column).
-fn is_zero_width(c: char) -> bool {
-    matches!(
-        c,
-        '\u{300}'..='\u{36f}'
-            | '\u{1ab0}'..='\u{1aff}'
-            | '\u{1dc0}'..='\u{1dff}'
-            | '\u{20d0}'..='\u{20ff}'
-            | '\u{fe20}'..='\u{fe2f}'
-    )
 }
 
 /// The innermost `(` left open at the end of `text`, as a byte offset.

@@ -10,6 +10,7 @@
 
 mod error;
 pub(crate) mod grammar;
+mod location;
 pub(crate) mod lower;
 mod names;
 pub mod scene;

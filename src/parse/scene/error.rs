@@ -10,6 +10,7 @@
 use super::super::error::{self as expr_error, ParseError, ParseErrorKind};
 use super::super::grammar::{Expected, Rule};
 use crate::dynamics::model::ModelError;
+use crate::parse::location::{floor_boundary, is_zero_width, Location};
 use std::fmt;
 use std::ops::Range;
 use thiserror::Error;
@@ -259,66 +260,6 @@ impl SceneExpected {
 fn words(what: &[SceneExpected]) -> String {
     let words: Vec<&str> = what.iter().map(|e| e.words()).collect();
     words.join(", or ")
-}
-
-/// A place in a scene: the byte range, the line and column of its start (from 1, columns in
-/// characters), and the line with a caret under the range.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct Location {
-    span: Range<usize>,
-    line: usize,
-    column: usize,
-    excerpt: String,
-}
-
-impl Location {
-    /// The place of `span` in `source`; a range beyond the source or inside a character is clamped.
-    pub(crate) fn new(source: &str, span: Range<usize>) -> Location {
-        let start = floor_boundary(source, span.start.min(source.len()));
-        let line_start = source[..start].rfind('\n').map_or(0, |i| i + 1);
-        let line_end = source[start..]
-            .find('\n')
-            .map_or(source.len(), |i| start + i);
-        let end = floor_boundary(source, span.end.clamp(start, line_end));
-        let before = &source[line_start..start];
-        let pad: String = before
-            .chars()
-            .filter(|&c| !is_zero_width(c))
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
-            .collect();
-        let width = source[start..end]
-            .chars()
-            .filter(|&c| !is_zero_width(c))
-            .count()
-            .max(1);
-        let text = source[line_start..line_end].trim_end_matches('\r');
-        Location {
-            span: start..end,
-            line: source[..start].matches('\n').count() + 1,
-            column: before.chars().count() + 1,
-            excerpt: format!("  {text}\n  {pad}{}", "^".repeat(width)),
-        }
-    }
-}
-
-/// The largest char boundary at or below `i`.
-fn floor_boundary(s: &str, mut i: usize) -> usize {
-    while !s.is_char_boundary(i) {
-        i -= 1;
-    }
-    i
-}
-
-/// Combining marks take no column of their own on a terminal.
-fn is_zero_width(c: char) -> bool {
-    matches!(
-        c,
-        '\u{300}'..='\u{36f}'
-            | '\u{1ab0}'..='\u{1aff}'
-            | '\u{1dc0}'..='\u{1dff}'
-            | '\u{20d0}'..='\u{20ff}'
-            | '\u{fe20}'..='\u{fe2f}'
-    )
 }
 
 /// An error in a scene: its kind, and where in the source it is. One pointer wide.
