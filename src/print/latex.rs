@@ -19,23 +19,8 @@ pub(super) fn expr(e: &Expr) -> String {
 
 /// Signed pieces joined into a sum; `nested` sums are compact unless a piece contains a space.
 pub(super) fn sum(pieces: &[Piece], nested: bool) -> String {
-    if pieces.is_empty() {
-        return "0".to_string();
-    }
     let bodies: Vec<String> = pieces.iter().map(|p| product(&p.product)).collect();
-    let spaced = !nested || bodies.iter().any(|b| b.contains(' '));
-    let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
-    let mut out = String::new();
-    for (i, (piece, body)) in pieces.iter().zip(&bodies).enumerate() {
-        match (i, piece.negative) {
-            (0, false) => {}
-            (0, true) => out.push('-'),
-            (_, false) => out.push_str(plus),
-            (_, true) => out.push_str(minus),
-        }
-        out.push_str(body);
-    }
-    out
+    super::join_sum(pieces, &bodies, nested)
 }
 
 /// `\begin{bmatrix} r1 \\ r2 \end{bmatrix}` from rows already joined with `&`.

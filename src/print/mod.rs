@@ -101,6 +101,27 @@ pub fn vector_to_string(v: &[Expr], style: Style) -> String {
     }
 }
 
+/// Joins signed bodies into a sum: `a + b - c`; a `nested` sum (in parentheses or a function
+/// argument) is compact, `a+b-c`, unless a body contains a space. No pieces print as `0`.
+fn join_sum(pieces: &[Piece], bodies: &[String], nested: bool) -> String {
+    if pieces.is_empty() {
+        return "0".to_string();
+    }
+    let spaced = !nested || bodies.iter().any(|b| b.contains(' '));
+    let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
+    let mut out = String::new();
+    for (i, (piece, body)) in pieces.iter().zip(bodies).enumerate() {
+        match (i, piece.negative) {
+            (0, false) => {}
+            (0, true) => out.push('-'),
+            (_, false) => out.push_str(plus),
+            (_, true) => out.push_str(minus),
+        }
+        out.push_str(body);
+    }
+    out
+}
+
 /// One signed term of a sum: `negative`, then the magnitude `coeff · Π base^exponent`.
 #[derive(Clone, Debug)]
 struct Piece {

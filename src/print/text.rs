@@ -40,23 +40,8 @@ impl Printer {
     /// Signed pieces joined into a sum; `nested` sums (in parentheses or a function argument) are
     /// compact unless a piece contains a space. No pieces print as `0`.
     pub(super) fn sum(&self, pieces: &[Piece], nested: bool) -> String {
-        if pieces.is_empty() {
-            return "0".to_string();
-        }
         let bodies: Vec<String> = pieces.iter().map(|p| self.product(&p.product)).collect();
-        let spaced = !nested || bodies.iter().any(|b| b.contains(' '));
-        let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
-        let mut out = String::new();
-        for (i, (piece, body)) in pieces.iter().zip(&bodies).enumerate() {
-            match (i, piece.negative) {
-                (0, false) => {}
-                (0, true) => out.push('-'),
-                (_, false) => out.push_str(plus),
-                (_, true) => out.push_str(minus),
-            }
-            out.push_str(body);
-        }
-        out
+        super::join_sum(pieces, &bodies, nested)
     }
 
     /// The magnitude of a product: `2 m2 lc2^2`, `1/2 m1`, `sqrt(2)/2`, `m1 g/(l1 l2)`.
