@@ -17,6 +17,12 @@ fn entry(p: &Poly) -> Expr {
     tidy(&p.to_expr())
 }
 
+/// An entry of a Newton–Euler vector: grouped as an equation side is (by `q̈`, by `q̇` products, then
+/// by trig monomial), kept as one expression.
+fn dynamic_entry(p: &Poly) -> Expr {
+    Expr::sum(lhs_terms(p))
+}
+
 fn inertia_entry(p: &Poly) -> Expr {
     tidy_by(&p.to_expr(), Grouping::Leading)
 }
@@ -43,7 +49,7 @@ impl Session {
     }
 
     fn vector(&self, v: &Vec3<Poly>) -> String {
-        let v: Vec<Expr> = v.0.iter().map(entry).collect();
+        let v: Vec<Expr> = v.0.iter().map(dynamic_entry).collect();
         print::vector_to_string(&v, self.style)
     }
 
@@ -92,7 +98,7 @@ impl Session {
                 print::vector_to_string(&g, self.style)
             }
             Command::P => self.one(&entry(&der.lagrange().p)),
-            Command::K => self.one(&entry(&der.lagrange().k)),
+            Command::K => print::sum_to_string(&lhs_terms(&der.lagrange().k), self.style),
             Command::Jv(i) => {
                 self.check(format!("Jv {i}"), 1, &[*i])?;
                 self.matrix(Self::tidy_rows(columns_to_rows(
