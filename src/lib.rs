@@ -2,7 +2,8 @@
 //!
 //! Layers, bottom up: [`algebra`] (canonical expressions, the normal form and the zero test),
 //! [`parse`] (the pest grammars for expressions and scenes), [`print`] (text, ASCII and LaTeX),
-//! [`dynamics`] (robots, Euler–Lagrange, Newton–Euler, proofs). The library does no I/O; the `symdyn`
+//! [`dynamics`] (robots, Euler–Lagrange, Newton–Euler, proofs), [`report`] (derivations as text) and
+//! [`repl`] (the interactive session, line in, answer out). The library does no I/O; the `symdyn`
 //! binary is a thin shell over it.
 
 // Matrix code follows the book's index notation (d_kj, c_ijk): index loops read closer to it.
@@ -12,4 +13,5 @@ pub mod algebra;
 pub mod dynamics;
 pub mod parse;
 pub mod print;
+pub mod repl;
 pub mod report;

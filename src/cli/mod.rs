@@ -1,9 +1,11 @@
 //! Command-line arguments and dispatch. Each command returns its whole output as a string, so the
-//! tests can drive `run` exactly as the binary does.
+//! tests can drive `run` exactly as the binary does; `repl` is the exception, a loop that prints as it
+//! answers (and returns an empty string).
 
 mod algebra_cmds;
 mod derive_cmds;
 mod error;
+mod repl_cmd;
 
 pub use error::CliError;
 
@@ -41,6 +43,12 @@ pub enum Command {
     /// Prove that Euler–Lagrange and Newton–Euler (both frames) agree, that D(q) is symmetric and that
     /// Ḋ − 2C is skew-symmetric; exit non-zero if any claim fails.
     Check {
+        /// The scene file.
+        scene: Option<String>,
+    },
+    /// An interactive session on a scene (default: the built-in PPP arm); reads a script when stdin is
+    /// not a terminal.
+    Repl {
         /// The scene file.
         scene: Option<String>,
     },
@@ -111,6 +119,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             ascii,
         } => derive_cmds::derive(scene.as_deref(), method, frame, format, ascii),
         Command::Check { scene } => derive_cmds::check_cmd(scene.as_deref()),
+        Command::Repl { scene } => repl_cmd::repl(scene.as_deref()),
         Command::Simplify { expr, ascii } => algebra_cmds::simplify(&expr, ascii),
         Command::Diff { expr, vars, ascii } => algebra_cmds::diff(&expr, &vars, ascii),
         Command::Dt { expr, ascii } => algebra_cmds::dt(&expr, ascii),

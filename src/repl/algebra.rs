@@ -1,0 +1,112 @@
+//! The expression commands (simplify, expand, diff, dt, subs, eval, latex) and the user's variables:
+//! every expression has the variables substituted before the command works on it.
+
+use super::{Command, ReplError, Session};
+use crate::algebra::{self, Expr, Symbol};
+use crate::parse::parse_expr;
+use crate::print;
+use std::collections::HashMap;
+
+impl Session {
+    /// `text` parsed, with the user's variables substituted.
+    pub(super) fn expr(&self, text: &str) -> Result<Expr, ReplError> {
+        let e = parse_expr(text).map_err(|e| ReplError::Parse(e.render("<input>")))?;
+        if self.vars.is_empty() {
+            return Ok(e);
+        }
+        let map: HashMap<Symbol, Expr> = self.vars.values().cloned().collect();
+        algebra::subs(&e, &map).map_err(|e| ReplError::Math(e.to_string()))
+    }
+
+    /// A variable name: a parameter or a coordinate (`m2`, `q1`, `qd1`).
+    fn variable(&self, text: &str) -> Result<Symbol, ReplError> {
+        parse_expr(text)
+            .ok()
+            .and_then(|e| e.as_symbol().cloned())
+            .ok_or_else(|| ReplError::Math(format!("`{text}` is not a variable name")))
+    }
+
+    fn show(&self, e: &Expr) -> String {
+        print::to_string(e, self.style)
+    }
+
+    /// `let name = expr`.
+    pub(super) fn let_var(&mut self, name: &str, value: &str) -> Result<String, ReplError> {
+        let sym = self.variable(name)?;
+        if sym.is_coord() {
+            return Err(ReplError::Math(format!(
+                "`{name}` is a joint coordinate; a variable needs another name"
+            )));
+        }
+        let v = self.expr(value)?;
+        let answer = format!("{} = {}", self.show(&Expr::sym(sym.clone())), self.show(&v));
+        self.vars.insert(sym.ascii_name(), (sym, v));
+        Ok(answer)
+    }
+
+    /// `vars`.
+    pub(super) fn list_vars(&self) -> String {
+        if self.vars.is_empty() {
+            return "no variables (define one with `let name = expr`)".into();
+        }
+        self.vars
+            .values()
+            .map(|(s, v)| format!("{} = {}", self.show(&Expr::sym(s.clone())), self.show(v)))
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    /// The names of the user's variables.
+    pub(super) fn var_names(&self) -> impl Iterator<Item = &String> {
+        self.vars.keys()
+    }
+
+    fn exact_values(&self, pairs: &[(String, String)]) -> Result<HashMap<Symbol, Expr>, ReplError> {
+        pairs
+            .iter()
+            .map(|(n, v)| Ok((self.variable(n)?, self.expr(v)?)))
+            .collect()
+    }
+
+    /// The expression commands.
+    pub(super) fn algebra(&self, cmd: &Command) -> Result<String, ReplError> {
+        let e = match cmd {
+            Command::Simplify(t) => algebra::simplify(&self.expr(t)?),
+            Command::Expand(t) => algebra::expand(&self.expr(t)?),
+            Command::Dt(t) => algebra::simplify(&algebra::dt(&self.expr(t)?)),
+            Command::Latex(t) => {
+                return Ok(print::to_string(&self.expr(t)?, print::Style::Latex));
+            }
+            Command::Diff(t, vars) => {
+                let mut e = self.expr(t)?;
+                for v in vars {
+                    e = algebra::diff(&e, &self.variable(v)?);
+                }
+                algebra::simplify(&e)
+            }
+            Command::Subs(t, pairs) => {
+                let map = self.exact_values(pairs)?;
+                let v = algebra::subs(&self.expr(t)?, &map)
+                    .map_err(|e| ReplError::Math(e.to_string()))?;
+                algebra::simplify(&v)
+            }
+            Command::Eval(t, pairs) => {
+                let mut values = HashMap::new();
+                for (s, v) in self.exact_values(pairs)? {
+                    let x = algebra::eval_f64(&v, &HashMap::new()).map_err(|err| {
+                        ReplError::Math(format!(
+                            "the value of {} is not a number: {err}",
+                            s.ascii_name()
+                        ))
+                    })?;
+                    values.insert(s, x);
+                }
+                let x = algebra::eval_f64(&self.expr(t)?, &values)
+                    .map_err(|e| ReplError::Math(e.to_string()))?;
+                return Ok(format!("{x}"));
+            }
+            _ => unreachable!("only expression commands reach Session::algebra"),
+        };
+        Ok(self.show(&e))
+    }
+}

@@ -1,0 +1,287 @@
+//! The scene queries: `D`, `C`, the Christoffel symbols, `g`, `P`, `K`, the Jacobians and transforms,
+//! the equations of motion, the Newton–Euler quantities, facts, and the inertia of a shape. Indices
+//! are 1-based as in the book and checked against the robot before anything is derived.
+
+use super::command::{words, Quantity};
+use super::{Command, ReplError, Session};
+use crate::algebra::tidy::{tidy, tidy_by, Grouping};
+use crate::algebra::{Expr, Poly, Symbol};
+use crate::dynamics::inertia::{self, Axis, Tensor};
+use crate::dynamics::kinematics::{columns_to_rows, mat_to_rows};
+use crate::dynamics::vec3::Vec3;
+use crate::dynamics::Frame;
+use crate::print;
+use crate::report::{self, lhs_terms, Method};
+
+fn entry(p: &Poly) -> Expr {
+    tidy(&p.to_expr())
+}
+
+/// An entry of a Newton–Euler vector: grouped as an equation side is (by `q̈`, by `q̇` products, then
+/// by trig monomial), kept as one expression.
+fn dynamic_entry(p: &Poly) -> Expr {
+    Expr::sum(lhs_terms(p))
+}
+
+fn inertia_entry(p: &Poly) -> Expr {
+    tidy_by(&p.to_expr(), Grouping::Leading)
+}
+
+impl Session {
+    fn dof(&self) -> usize {
+        self.der.robot().dof()
+    }
+
+    /// Checks 1-based (or, with `low = 0`, 0-based) indices against the robot.
+    fn check(&self, query: String, low: usize, indices: &[usize]) -> Result<(), ReplError> {
+        let n = self.dof();
+        if indices.iter().all(|&i| i >= low && i <= n) {
+            Ok(())
+        } else {
+            Err(ReplError::Index { query, dof: n, low })
+        }
+    }
+
+    fn matrix(&self, rows: Vec<Vec<Expr>>) -> String {
+        print::matrix_to_string(&rows, self.style)
+            .trim_end()
+            .to_string()
+    }
+
+    fn vector(&self, v: &Vec3<Poly>) -> String {
+        let v: Vec<Expr> = v.0.iter().map(dynamic_entry).collect();
+        print::vector_to_string(&v, self.style)
+    }
+
+    fn one(&self, e: &Expr) -> String {
+        print::to_string(e, self.style)
+    }
+
+    fn tidy_rows(rows: Vec<Vec<Expr>>) -> Vec<Vec<Expr>> {
+        rows.into_iter()
+            .map(|r| r.iter().map(tidy).collect())
+            .collect()
+    }
+
+    /// The scene queries.
+    pub(super) fn query(&self, cmd: &Command) -> Result<String, ReplError> {
+        let der = &self.der;
+        Ok(match cmd {
+            Command::D(None) => {
+                let d = &der.lagrange().d;
+                self.matrix(
+                    d.iter()
+                        .map(|r| r.iter().map(inertia_entry).collect())
+                        .collect(),
+                )
+            }
+            Command::D(Some((i, j))) => {
+                self.check(format!("D[{i},{j}]"), 1, &[*i, *j])?;
+                self.one(&inertia_entry(&der.lagrange().d[i - 1][j - 1]))
+            }
+            Command::C => {
+                let c = &der.lagrange().c;
+                self.matrix(c.iter().map(|r| r.iter().map(entry).collect()).collect())
+            }
+            Command::Christoffel(Some([i, j, k])) => {
+                self.check(format!("christoffel {i} {j} {k}"), 1, &[*i, *j, *k])?;
+                let l = der.lagrange();
+                if l.d_constant {
+                    "0".to_string()
+                } else {
+                    self.one(&entry(&l.christoffel[i - 1][j - 1][k - 1]))
+                }
+            }
+            Command::Christoffel(None) => self.christoffel_list(),
+            Command::G => {
+                let g: Vec<Expr> = der.lagrange().g.iter().map(entry).collect();
+                print::vector_to_string(&g, self.style)
+            }
+            Command::P => self.one(&entry(&der.lagrange().p)),
+            Command::K => print::sum_to_string(&lhs_terms(&der.lagrange().k), self.style),
+            Command::Jv(i) => {
+                self.check(format!("Jv {i}"), 1, &[*i])?;
+                self.matrix(Self::tidy_rows(columns_to_rows(
+                    &der.kinematics().jv[i - 1],
+                )))
+            }
+            Command::Jw(i) => {
+                self.check(format!("Jw {i}"), 1, &[*i])?;
+                self.matrix(Self::tidy_rows(columns_to_rows(
+                    &der.kinematics().jw[i - 1],
+                )))
+            }
+            Command::T(i) => {
+                self.check(format!("T {i}"), 0, &[*i])?;
+                self.matrix(Self::tidy_rows(der.kinematics().transform(*i)))
+            }
+            Command::R(i) => {
+                self.check(format!("R {i}"), 0, &[*i])?;
+                self.matrix(Self::tidy_rows(mat_to_rows(&der.kinematics().rot0[*i])))
+            }
+            Command::Eom(None) => report::equations(der, Method::Lagrange, self.style)
+                .trim_end()
+                .to_string(),
+            Command::Eom(Some(k)) => {
+                self.check(format!("eom {k}"), 1, &[*k])?;
+                let lhs = print::sum_to_string(&lhs_terms(&der.lagrange().tau[k - 1]), self.style);
+                let input = Expr::sym(Symbol::new(&der.robot().inputs[k - 1]));
+                format!("{lhs} = {}", self.one(&input))
+            }
+            Command::Ne(frame, q, i) => {
+                self.check(format!("ne {} {} {i}", frame.name(), q.name()), 1, &[*i])?;
+                self.newton_euler(*frame, *q, *i)
+            }
+            Command::Inertia(text) => self.inertia(text)?,
+            Command::Facts => {
+                let mut lines: Vec<String> = der.facts().iter().map(|f| f.to_string()).collect();
+                lines.extend(der.warnings().iter().map(|w| format!("warning: {w}")));
+                if lines.is_empty() {
+                    lines.push(format!(
+                        "No structural simplifications apply to {}.",
+                        der.robot().name
+                    ));
+                }
+                lines.join("\n")
+            }
+            _ => unreachable!("only scene queries reach Session::query"),
+        })
+    }
+
+    fn christoffel_list(&self) -> String {
+        let l = self.der.lagrange();
+        let n = self.dof();
+        let mut lines = Vec::new();
+        if !l.d_constant {
+            for i in 0..n {
+                for j in 0..n {
+                    for k in 0..n {
+                        let c = &l.christoffel[i][j][k];
+                        if !c.is_zero() {
+                            lines.push(format!(
+                                "c{}{}{} = {}",
+                                i + 1,
+                                j + 1,
+                                k + 1,
+                                self.one(&entry(c))
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+        if lines.is_empty() {
+            if l.d_constant {
+                return "D(q) is constant, so all the Christoffel symbols c_ijk vanish and C(q, q̇) = 0."
+                    .into();
+            }
+            return "All the Christoffel symbols c_ijk vanish, so C(q, q̇) = 0.".into();
+        }
+        lines.join("\n")
+    }
+
+    fn newton_euler(&self, frame: Frame, q: Quantity, i: usize) -> String {
+        let ne = self.der.newton_euler(frame);
+        let k = i - 1;
+        match q {
+            Quantity::Omega => self.vector(&ne.omega[k]),
+            Quantity::Alpha => self.vector(&ne.alpha[k]),
+            Quantity::Ac => self.vector(&ne.a_c[k]),
+            Quantity::Ae => self.vector(&ne.a_e[k]),
+            Quantity::G => self.vector(&ne.g[k]),
+            Quantity::F => self.vector(&ne.f[k]),
+            Quantity::N => match &ne.n[k] {
+                Some(v) => self.vector(v),
+                None => format!(
+                    "n_{i} is not computed: no revolute joint precedes link {i}, so its moment equation is not needed"
+                ),
+            },
+            Quantity::Tau => print::sum_to_string(&lhs_terms(&ne.tau[k]), self.style),
+        }
+    }
+
+    /// `inertia SHAPE(ARGS) mass M [at [x,y,z]]`.
+    fn inertia(&self, text: &str) -> Result<String, ReplError> {
+        let bad = || ReplError::Usage(super::command::usage("inertia"));
+        let ws = words(text);
+        let (shape, mass, at) = match ws[..] {
+            [shape, "mass", m] => (shape, m, None),
+            [shape, "mass", m, "at", r] => (shape, m, Some(r)),
+            _ => return Err(bad()),
+        };
+        let (name, args) = shape
+            .split_once('(')
+            .and_then(|(n, a)| Some((n, a.strip_suffix(')')?)))
+            .ok_or_else(bad)?;
+        let args: Vec<&str> = split_commas(args);
+        let m = self.expr(mass)?;
+        let axis = |a: Option<&&str>| -> Result<Axis, ReplError> {
+            match a.map(|s| s.trim()) {
+                None | Some("z") => Ok(Axis::Z),
+                Some("x") => Ok(Axis::X),
+                Some("y") => Ok(Axis::Y),
+                Some(_) => Err(bad()),
+            }
+        };
+        let tensor: Tensor = match (name, args.len()) {
+            ("box", 3) => inertia::solid_box(
+                &m,
+                &self.expr(args[0])?,
+                &self.expr(args[1])?,
+                &self.expr(args[2])?,
+            ),
+            ("cylinder", 2 | 3) => inertia::cylinder(
+                &m,
+                &self.expr(args[0])?,
+                &self.expr(args[1])?,
+                axis(args.get(2))?,
+            ),
+            ("rod", 1 | 2) => inertia::rod(&m, &self.expr(args[0])?, axis(args.get(1))?),
+            ("sphere", 1) => inertia::sphere(&m, &self.expr(args[0])?),
+            _ => return Err(bad()),
+        };
+        let tensor = match at {
+            None => tensor,
+            Some(r) => {
+                let inner = r
+                    .strip_prefix('[')
+                    .and_then(|r| r.strip_suffix(']'))
+                    .ok_or_else(bad)?;
+                let parts = split_commas(inner);
+                if parts.len() != 3 {
+                    return Err(bad());
+                }
+                let r = [
+                    self.expr(parts[0])?,
+                    self.expr(parts[1])?,
+                    self.expr(parts[2])?,
+                ];
+                inertia::shift(&tensor, &m, &r)
+            }
+        };
+        let rows: Vec<Vec<Expr>> = tensor
+            .iter()
+            .map(|r| r.iter().map(tidy).collect())
+            .collect();
+        Ok(self.matrix(rows))
+    }
+}
+
+/// Splits at commas outside parentheses.
+fn split_commas(text: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' if depth == 0 => {
+                out.push(text[start..i].trim());
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push(text[start..].trim());
+    out
+}

@@ -1,0 +1,53 @@
+//! The errors of one REPL line. Each says what went wrong in words; none ends the session.
+
+use thiserror::Error;
+
+/// Why a line got no answer.
+#[derive(Debug, Error, PartialEq, Eq)]
+pub enum ReplError {
+    /// An expression or a scene that does not parse, rendered with its line, column and caret.
+    #[error("{0}")]
+    Parse(String),
+    /// A first word that names no command.
+    #[error("unknown command `{name}`{}; type `help` for the list", suggestion_text(.suggestion))]
+    UnknownCommand {
+        /// What was typed.
+        name: String,
+        /// The closest command name, if one is close.
+        suggestion: Option<String>,
+    },
+    /// A command used with the wrong arguments: the usage line.
+    #[error("usage: {0}")]
+    Usage(String),
+    /// An index beyond the robot's joints (or below 1).
+    #[error("{query}: {}", index_text(*.low, *.dof))]
+    Index {
+        /// The query as typed back: `D[4,1]`, `Jv 0`.
+        query: String,
+        /// The robot's number of joints.
+        dof: usize,
+        /// The lowest index the query accepts (0 for frames, 1 otherwise).
+        low: usize,
+    },
+    /// A mathematical operation without a result (a value that is not a number, a zero denominator).
+    #[error("{0}")]
+    Math(String),
+    /// A command the front end must carry out (reading a file).
+    #[error("`{0}` is read by the REPL front end; in the library call `Session::load_scene_text`")]
+    FrontEnd(String),
+}
+
+fn suggestion_text(s: &Option<String>) -> String {
+    match s {
+        Some(s) => format!(" (did you mean `{s}`?)"),
+        None => String::new(),
+    }
+}
+
+fn index_text(low: usize, dof: usize) -> String {
+    if low == 0 {
+        format!("the robot has {dof} joints (frames 0 to {dof})")
+    } else {
+        format!("the robot has {dof} joints")
+    }
+}
