@@ -13,3 +13,4 @@ pub mod dynamics;
 pub mod parse;
 pub mod print;
 pub mod report;
+pub mod sheet;
