@@ -5,7 +5,9 @@
 //! The fully symbolic PUMA 560 is compiled with [`Scope::MassAndGravity`] (the scene, `D(q)` and
 //! `g(q)`): its full sheet is 3.5 MB of LaTeX and takes about 75 s to derive and lay out in a debug
 //! build, more than this suite's time budget. The numeric PUMA 560 and every other example are
-//! compiled in full (both methods, both frames).
+//! compiled in full (both methods, both frames); in the fully symbolic Stanford arm's sheet, the
+//! Newton–Euler intermediate vectors of more than 1000 expanded terms are stated by their length (see
+//! `MAX_TERMS` in `src/sheet/newton_euler.rs`).
 
 mod common;
 

@@ -13,10 +13,10 @@ fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
 }
 
 /// The most terms (expanded) an intermediate vector component may have to be printed. Beyond it (the
-/// inertial-frame moments of a fully symbolic 5- or 6-link arm run to thousands of terms) the sheet
-/// says how long the quantity is instead: pages of it would help no reader, and typesetting them takes
-/// minutes. The equations of motion are always printed in full.
-const MAX_TERMS: usize = 150;
+/// inertial-frame moments of the fully symbolic Stanford arm run to thousands of terms) the sheet
+/// says how long the quantity is instead: pages of it would help no reader, and laying them out takes
+/// minutes. The equations of motion are always printed in full; the numeric PUMA 560 stays below it.
+const MAX_TERMS: usize = 1000;
 
 /// `name` as a vector display, components `(name)_x` … when too wide, or its length when too long.
 fn vector(lay: &mut Layout, name: &str, v: &Vec3<Poly>) -> String {
