@@ -160,3 +160,28 @@ fn every_example_sheet_compiles_on_the_page() {
         problems.join("\n")
     );
 }
+
+fn symdyn(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .args(args)
+        .output()
+        .expect("run symdyn")
+}
+
+#[test]
+fn cli_sheet_prints_the_document_and_checks_its_arguments() {
+    let out = symdyn(&["sheet", "--method", "lagrange"]);
+    assert!(out.status.success());
+    let tex = String::from_utf8(out.stdout).expect("UTF-8");
+    let library = sheet(
+        &derivation(BUILTIN_PPP),
+        &SheetOptions {
+            methods: Methods::Lagrange,
+            ..SheetOptions::default()
+        },
+    );
+    assert_eq!(tex, library);
+    let out = symdyn(&["sheet", "--pdf"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--pdf needs -o FILE.tex"));
+}
