@@ -15,3 +15,4 @@ pub mod parse;
 pub mod print;
 pub mod repl;
 pub mod report;
+pub mod sheet;

@@ -6,6 +6,7 @@ mod algebra_cmds;
 mod derive_cmds;
 mod error;
 mod repl_cmd;
+mod sheet_cmd;
 
 pub use error::CliError;
 
@@ -51,6 +52,24 @@ pub enum Command {
     Repl {
         /// The scene file.
         scene: Option<String>,
+    },
+    /// Write the solution sheet of a scene: a complete LaTeX document (the scene, Euler–Lagrange,
+    /// Newton–Euler, and the proof that they agree).
+    Sheet {
+        /// The scene file.
+        scene: Option<String>,
+        /// The formulations.
+        #[arg(long, value_enum, default_value = "both")]
+        method: sheet_cmd::SheetMethod,
+        /// The frames of the Newton–Euler recursion.
+        #[arg(long, value_enum, default_value = "both")]
+        frame: sheet_cmd::SheetFrame,
+        /// Write the LaTeX to this file instead of stdout.
+        #[arg(short, long)]
+        output: Option<String>,
+        /// Also compile it with pdflatex into FILE.pdf next to FILE.tex (needs -o).
+        #[arg(long)]
+        pdf: bool,
     },
     /// Simplify an expression to its normal form, then tidy it for display.
     Simplify {
@@ -120,6 +139,13 @@ pub fn run(args: Args) -> Result<String, CliError> {
         } => derive_cmds::derive(scene.as_deref(), method, frame, format, ascii),
         Command::Check { scene } => derive_cmds::check_cmd(scene.as_deref()),
         Command::Repl { scene } => repl_cmd::repl(scene.as_deref()),
+        Command::Sheet {
+            scene,
+            method,
+            frame,
+            output,
+            pdf,
+        } => sheet_cmd::sheet_cmd(scene.as_deref(), method, frame, output.as_deref(), pdf),
         Command::Simplify { expr, ascii } => algebra_cmds::simplify(&expr, ascii),
         Command::Diff { expr, vars, ascii } => algebra_cmds::diff(&expr, &vars, ascii),
         Command::Dt { expr, ascii } => algebra_cmds::dt(&expr, ascii),

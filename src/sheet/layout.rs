@@ -1,0 +1,309 @@
+//! Long expressions kept on the page: sums broken across lines by estimated printed width, matrices
+//! and vectors that are too wide given entry by entry, and single terms that are too wide replaced by
+//! a named abbreviation (`\Xi_{1}`) that is given, broken term by term, right after.
+//!
+//! Widths are estimates in "character units" of the LaTeX source: letters, digits and brackets count
+//! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
+//! `^`, `_`) nothing. Subscripts count as full characters, so the estimate errs on the wide side.
+
+use crate::algebra::tidy::{tidy_by, Grouping};
+use crate::algebra::{Expr, Kind, Symbol};
+use crate::print::{self, Style};
+
+/// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80).
+const BUDGET: usize = 66;
+
+/// The estimated printed width of LaTeX math source.
+pub fn width(latex: &str) -> usize {
+    let mut w = 0;
+    let mut chars = latex.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' => {
+                let mut name = String::new();
+                while let Some(&n) = chars.peek() {
+                    if n.is_ascii_alphabetic() {
+                        name.push(n);
+                        chars.next();
+                    } else {
+                        break;
+                    }
+                }
+                if name.is_empty() {
+                    // `\\`, `\,`, `\{`: a control symbol.
+                    if let Some(n) = chars.next() {
+                        w += usize::from(n == '{' || n == '}');
+                    }
+                    continue;
+                }
+                w += match name.as_str() {
+                    "sin" | "cos" | "tan" => 3,
+                    "quad" => 2,
+                    "frac" | "left" | "right" | "dot" | "ddot" | "dddot" | "ddddot" | "mathrm"
+                    | "begin" | "end" | "bmatrix" | "sqrt" => 0,
+                    _ => 1,
+                };
+            }
+            '{' | '}' | '^' | '_' | ' ' | '&' => {}
+            '+' | '-' | '=' => w += 2,
+            _ => w += 1,
+        }
+    }
+    w
+}
+
+/// Lays out display math; numbers the abbreviations it introduces across one document.
+#[derive(Debug, Default)]
+pub struct Layout {
+    abbreviations: usize,
+}
+
+/// The LaTeX of one signed term, `-m_{1} g` or `m_{1} g`.
+fn term_string(t: &Expr) -> String {
+    print::sum_to_string(std::slice::from_ref(t), Style::Latex)
+}
+
+/// A sum's terms as separate expressions, each with its coefficient; a non-sum is one term.
+fn flat_terms(terms: &[Expr]) -> Vec<Expr> {
+    terms
+        .iter()
+        .flat_map(|t| match t.kind() {
+            Kind::Add(..) => t.terms().into_iter().map(|(e, c)| e.scale(&c)).collect(),
+            Kind::Num(r) if r.is_zero() => vec![],
+            _ => vec![t.clone()],
+        })
+        .collect()
+}
+
+impl Layout {
+    /// A new layout, with no abbreviations yet.
+    pub fn new() -> Layout {
+        Layout::default()
+    }
+
+    /// `lhs = e` as display math, `e` shown in the house style (`tidy_by`), broken if too long.
+    pub fn equation(&mut self, lhs: &str, e: &Expr, grouping: Grouping) -> String {
+        let shown = tidy_by(e, grouping);
+        self.terms(Some(lhs), &[shown], None)
+    }
+
+    /// The terms of a sum as display math, `lhs = t1 + t2 + … = rhs` (either side optional), broken
+    /// across `align*` lines when too long. A term too wide for a line has its widest sum factor
+    /// replaced by an abbreviation, which is given after the equation.
+    pub fn terms(&mut self, lhs: Option<&str>, terms: &[Expr], rhs: Option<&str>) -> String {
+        let mut later: Vec<(String, Expr)> = Vec::new();
+        let prefix = lhs.map_or(0, |l| width(l) + 2);
+        let room = BUDGET.saturating_sub(prefix).max(20);
+        let pieces: Vec<String> = flat_terms(terms)
+            .iter()
+            .map(|t| self.fit_term(t, room, &mut later))
+            .collect();
+        let mut lines: Vec<String> = Vec::new();
+        let mut line = String::new();
+        let mut used = 0;
+        for (i, p) in pieces.iter().enumerate() {
+            let joined = if i == 0 {
+                p.clone()
+            } else if let Some(rest) = p.strip_prefix('-') {
+                format!(" - {rest}")
+            } else {
+                format!(" + {p}")
+            };
+            let w = width(&joined);
+            if !line.is_empty() && used + w > room {
+                lines.push(std::mem::take(&mut line));
+                used = 0;
+            }
+            used += w;
+            line.push_str(&joined);
+        }
+        if pieces.is_empty() {
+            line.push('0');
+        }
+        lines.push(line);
+        let rhs_text = rhs.map(|r| format!(" = {r}")).unwrap_or_default();
+        let mut out = if lines.len() == 1 {
+            let l = lhs.map(|l| format!("{l} = ")).unwrap_or_default();
+            format!("\\[ {l}{}{rhs_text} \\]\n", lines[0])
+        } else {
+            let l = lhs.map(|l| format!("{l} ")).unwrap_or_default();
+            let eq = if lhs.is_some() { "&= " } else { "& " };
+            let last = lines.len() - 1;
+            let body: Vec<String> = lines
+                .iter()
+                .enumerate()
+                .map(|(i, line)| {
+                    let end = if i == last { rhs_text.as_str() } else { "" };
+                    if i == 0 {
+                        format!("  {l}{eq}{line}{end}")
+                    } else {
+                        format!("  &\\quad {}{end}", line.trim_start())
+                    }
+                })
+                .collect();
+            format!(
+                "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+                body.join(" \\\\\n")
+            )
+        };
+        if !later.is_empty() {
+            out.push_str("where\n");
+            for (name, e) in later {
+                out.push_str(&self.terms(Some(&name), &[e], None));
+            }
+        }
+        out
+    }
+
+    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
+    fn fit_term(&mut self, t: &Expr, room: usize, later: &mut Vec<(String, Expr)>) -> String {
+        let s = term_string(t);
+        if width(&s) <= room {
+            return s;
+        }
+        let Kind::Mul(c, factors) = t.kind() else {
+            return s;
+        };
+        let widest = factors
+            .iter()
+            .enumerate()
+            .filter(|(_, (b, e))| *e == 1 && matches!(b.kind(), Kind::Add(..)))
+            .max_by_key(|(_, (b, _))| width(&print::to_string(b, Style::Latex)));
+        let Some((index, (sum, _))) = widest else {
+            return s;
+        };
+        self.abbreviations += 1;
+        let name = format!("Xi{}", self.abbreviations);
+        let symbol = Expr::sym(Symbol::new(&name));
+        let rest = factors
+            .iter()
+            .enumerate()
+            .map(|(i, (b, e))| {
+                if i == index {
+                    symbol.clone()
+                } else {
+                    b.pow(*e)
+                        .expect("a factor of a canonical product has a valid power")
+                }
+            })
+            .chain(std::iter::once(Expr::num(c.clone())));
+        let shorter = Expr::product(rest);
+        later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
+        term_string(&shorter)
+    }
+
+    /// `lhs = [rows]` as one `bmatrix` when it fits the line, otherwise entry by entry as
+    /// `entry(i, j) = …` (1-based), only `j >= i` when `symmetric`. Entries are tidied by `grouping`.
+    pub fn matrix(
+        &mut self,
+        lhs: &str,
+        rows: &[Vec<Expr>],
+        entry: &dyn Fn(usize, usize) -> String,
+        symmetric: bool,
+        grouping: Grouping,
+    ) -> String {
+        let shown: Vec<Vec<Expr>> = rows
+            .iter()
+            .map(|r| r.iter().map(|e| tidy_by(e, grouping)).collect())
+            .collect();
+        let cols = shown.first().map_or(0, Vec::len);
+        let col_width: usize = (0..cols)
+            .map(|j| {
+                shown
+                    .iter()
+                    .map(|r| width(&print::to_string(&r[j], Style::Latex)))
+                    .max()
+                    .unwrap_or(0)
+                    + 3
+            })
+            .sum();
+        if width(lhs) + 4 + col_width <= BUDGET {
+            return format!(
+                "\\[ {lhs} = {} \\]\n",
+                print::matrix_to_string(&shown, Style::Latex)
+            );
+        }
+        let mut out = String::new();
+        if symmetric {
+            out.push_str("The matrix is symmetric; its entries on and above the diagonal are\n");
+        } else {
+            out.push_str("Its entries are\n");
+        }
+        for (i, row) in shown.iter().enumerate() {
+            for (j, e) in row.iter().enumerate() {
+                if symmetric && j < i {
+                    continue;
+                }
+                out.push_str(&self.terms(
+                    Some(&entry(i + 1, j + 1)),
+                    std::slice::from_ref(e),
+                    None,
+                ));
+            }
+        }
+        out
+    }
+
+    /// `lhs = [v]` as a column when it fits, otherwise component by component `component(k) = …`
+    /// (0-based `k`). Components are tidied by `grouping`.
+    pub fn vector(
+        &mut self,
+        lhs: &str,
+        v: &[Expr],
+        component: &dyn Fn(usize) -> String,
+        grouping: Grouping,
+    ) -> String {
+        let shown: Vec<Expr> = v.iter().map(|e| tidy_by(e, grouping)).collect();
+        let widest = shown
+            .iter()
+            .map(|e| width(&print::to_string(e, Style::Latex)))
+            .max()
+            .unwrap_or(0);
+        if width(lhs) + 6 + widest <= BUDGET {
+            return format!(
+                "\\[ {lhs} = {} \\]\n",
+                print::vector_to_string(&shown, Style::Latex)
+            );
+        }
+        let mut out = String::new();
+        for (k, e) in shown.iter().enumerate() {
+            out.push_str(&self.terms(Some(&component(k)), std::slice::from_ref(e), None));
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse::parse_expr;
+
+    #[test]
+    fn widths_count_printed_characters() {
+        for (latex, w) in [
+            ("m_{1} g", 3),
+            ("\\frac{1}{2} m_{1}", 4),
+            ("\\sin q_{2} + \\ddot{q}_{1}", 9),
+        ] {
+            assert_eq!(width(latex), w, "{latex}");
+        }
+    }
+
+    #[test]
+    fn long_sums_break_into_align_lines() {
+        let long: Vec<String> = (1..=30).map(|i| format!("m{i} g")).collect();
+        let e = parse_expr(&long.join(" + ")).unwrap();
+        let out = Layout::new().terms(Some("P"), &[e], None);
+        assert!(out.starts_with("\\begin{align*}"), "{out}");
+        assert!(out.contains("&\\quad + "), "{out}");
+    }
+
+    #[test]
+    fn a_wide_factor_becomes_an_abbreviation() {
+        let long: Vec<String> = (1..=30).map(|i| format!("m{i}")).collect();
+        let e = parse_expr(&format!("({}) * qdd1", long.join(" + "))).unwrap();
+        let out = Layout::new().terms(None, &[e], Some("u_{1}"));
+        assert!(out.contains("\\Xi_{1} \\ddot{q}_{1} = u_{1}"), "{out}");
+        assert!(out.contains("where\n"), "{out}");
+    }
+}

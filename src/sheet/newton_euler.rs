@@ -1,0 +1,163 @@
+//! The Newton–Euler section for one frame (Spong et al., §7.5): the forward recursion link by link
+//! (`ω_i`, `α_i`, `a_c,i`, `a_e,i`, `g_i`), the backward recursion (`f_i`, `n_i`), the actuated forces
+//! and torques, and the equations.
+
+use super::layout::Layout;
+use crate::algebra::tidy::Grouping;
+use crate::algebra::{Expr, Poly};
+use crate::dynamics::vec3::Vec3;
+use crate::dynamics::{Derivation, Frame, JointKind};
+
+fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
+    v.0.iter().map(Poly::to_expr).collect()
+}
+
+/// The most terms (expanded) an intermediate vector component may have to be printed. Beyond it (the
+/// inertial-frame moments of the fully symbolic Stanford arm run to thousands of terms) the sheet
+/// says how long the quantity is instead: pages of it would help no reader, and laying them out takes
+/// minutes. The equations of motion are always printed in full; the numeric PUMA 560 stays below it.
+const MAX_TERMS: usize = 1000;
+
+/// `name` as a vector display, components `(name)_x` … when too wide, or its length when too long.
+fn vector(lay: &mut Layout, name: &str, v: &Vec3<Poly>) -> String {
+    let longest = v.0.iter().map(Poly::len).max().unwrap_or(0);
+    if longest > MAX_TERMS {
+        let sizes: Vec<String> = v.0.iter().map(|c| c.len().to_string()).collect();
+        return format!(
+            "${name}$ is too long to print: its components have {} terms when expanded.\n\n",
+            sizes.join(", ")
+        );
+    }
+    let base = name.to_string();
+    lay.vector(
+        name,
+        &exprs(v),
+        &move |k| format!("({base})_{{{}}}", ["x", "y", "z"][k]),
+        Grouping::Leading,
+    )
+}
+
+/// The section for `frame`.
+pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> String {
+    let robot = der.robot();
+    let n = robot.dof();
+    let ne = der.newton_euler(frame);
+    let (title, where_) = match frame {
+        Frame::Body => (
+            "body-fixed frames",
+            "every quantity of link $i$ is written in its own frame $i$",
+        ),
+        Frame::Inertial => (
+            "the inertial frame",
+            "every quantity is written in frame 0, so no rotation matrices enter the recursions",
+        ),
+    };
+    let mut out = format!("\\section*{{Newton--Euler formulation in {title}}}\n");
+    out.push_str(&format!(
+        "The recursions start from $\\omega_0 = \\alpha_0 = a_{{e,0}} = 0$; {where_}.\n"
+    ));
+    let first_revolute = robot
+        .joints
+        .iter()
+        .position(|j| j.kind == JointKind::Revolute);
+    match first_revolute {
+        None => out.push_str(
+            "Since this manipulator has only prismatic joints, the torque equations do not need to \
+             be written: only the force equations are.\n",
+        ),
+        Some(0) => {}
+        Some(r) => out.push_str(&format!(
+            "Only prismatic joints precede joint {}, so the torque equations are needed only from \
+             link {} on.\n",
+            r + 1,
+            r + 1
+        )),
+    }
+    out.push_str("\\subsection*{Forward recursion}\n");
+    for i in 0..n {
+        let k = i + 1;
+        out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
+        out.push_str(&vector(lay, &format!("\\omega_{{{k}}}"), &ne.omega[i]));
+        out.push_str(&vector(lay, &format!("\\alpha_{{{k}}}"), &ne.alpha[i]));
+        out.push_str(&vector(lay, &format!("a_{{c,{k}}}"), &ne.a_c[i]));
+        out.push_str(&vector(lay, &format!("a_{{e,{k}}}"), &ne.a_e[i]));
+        out.push_str(&vector(lay, &format!("g_{{{k}}}"), &ne.g[i]));
+    }
+    out.push_str(&format!(
+        "\\subsection*{{Backward recursion}}\nStart with $f_{{{}}} = 0$ and $n_{{{}}} = 0$. Then \
+         $f_i = R^{{i}}_{{i+1}} f_{{i+1}} + m_i (a_{{c,i}} - g_i)$ and \
+         $n_i = R^{{i}}_{{i+1}} n_{{i+1}} - f_i \\times r_{{i-1,c_i}} + (R^{{i}}_{{i+1}} f_{{i+1}}) \\times r_{{i,c_i}} \
+         + I_i \\alpha_i + \\omega_i \\times (I_i \\omega_i)$ (in the inertial frame the rotations are \
+         the identity):\n",
+        n + 1,
+        n + 1
+    ));
+    for i in (0..n).rev() {
+        let k = i + 1;
+        out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
+        out.push_str(&vector(lay, &format!("f_{{{k}}}"), &ne.f[i]));
+        match &ne.n[i] {
+            Some(m) => out.push_str(&vector(lay, &format!("n_{{{k}}}"), m)),
+            None => out.push_str(&format!(
+                "The torque $n_{{{k}}}$ is not needed: only prismatic joints precede link {k}.\n"
+            )),
+        }
+    }
+    let axis = match frame {
+        Frame::Body => "z^{(i)}_{i-1}",
+        Frame::Inertial => "z_{i-1}",
+    };
+    out.push_str(&format!(
+        "\\subsection*{{Actuated forces and torques}}\nThe actuated force of a prismatic joint is \
+         $f_i^T {axis}$, the torque of a revolute joint $n_i^T {axis}$, with ${axis}$ the axis of \
+         joint $i$ ({}).\n",
+        match frame {
+            Frame::Body => "written in frame $i$",
+            Frame::Inertial => "in frame 0",
+        }
+    ));
+    let kin = der.kinematics();
+    for i in 0..n {
+        let k = i + 1;
+        let jf = &kin.joints[i];
+        let b = match frame {
+            Frame::Body => &jf.axis_local,
+            Frame::Inertial => &kin.axis0[i],
+        }
+        .scale(&jf.rate);
+        let axis_i = match frame {
+            Frame::Body => format!("z^{{({k})}}_{{{i}}}"),
+            Frame::Inertial => format!("z_{{{i}}}"),
+        };
+        let (what, vec) = match jf.kind {
+            JointKind::Prismatic => ("f", "force"),
+            JointKind::Revolute => ("n", "torque"),
+        };
+        let b = exprs(&b);
+        let cells: Vec<String> = b.iter().map(super::math).collect();
+        let inline = format!("{axis_i} = [{}]^T", cells.join(", "));
+        if super::layout::width(&inline) <= 40 {
+            out.push_str(&format!(
+                "Joint {k}: ${inline}$, so the actuated {vec} is ${what}_{{{k}}}^T {axis_i}$.\n"
+            ));
+        } else {
+            out.push_str(&format!(
+                "The actuated {vec} of joint {k} is ${what}_{{{k}}}^T {axis_i}$, with\n"
+            ));
+            let name = axis_i.clone();
+            out.push_str(&lay.vector(
+                &axis_i,
+                &b,
+                &move |c| format!("({name})_{{{}}}", ["x", "y", "z"][c]),
+                Grouping::Trig,
+            ));
+        }
+    }
+    out.push_str(&super::lagrange::equations(
+        der,
+        &ne.tau,
+        lay,
+        "Therefore the equations of motion are\n",
+    ));
+    out
+}

@@ -1,0 +1,194 @@
+//! The scene: the DH table, masses, centres of mass, gravity and inputs; the link transforms; the
+//! inertia tensors where they matter, or the facts that say why they do not.
+
+use super::layout::Layout;
+use super::{math, sym, text};
+use crate::algebra::tidy::Grouping;
+use crate::algebra::{Expr, Kind};
+use crate::dynamics::facts::Fact;
+use crate::dynamics::kinematics::mat_to_rows;
+use crate::dynamics::{Convention, Derivation, JointKind};
+
+/// An angle: a rational multiple of π in degrees (`-90^{\circ}`), anything else as it is.
+fn angle(e: &Expr) -> String {
+    if e.is_zero() {
+        return "0".to_string();
+    }
+    if let Ok(ratio) = e.div(&Expr::pi()) {
+        if let Kind::Num(r) = ratio.kind() {
+            let deg = Expr::num(r.clone()).scale(&crate::algebra::Rational::int(180));
+            return format!("{}^{{\\circ}}", math(&deg));
+        }
+    }
+    math(e)
+}
+
+fn column(v: &[Expr]) -> String {
+    let cells: Vec<String> = v.iter().map(math).collect();
+    format!("[{}]^{{T}}", cells.join(", "))
+}
+
+/// The section.
+pub(super) fn section(der: &Derivation, lay: &mut Layout) -> String {
+    let robot = der.robot();
+    let n = robot.dof();
+    let kin = der.kinematics();
+    let mut out = String::from("\\section*{The manipulator}\n");
+    let kinds: String = robot
+        .joints
+        .iter()
+        .map(|j| match j.kind {
+            JointKind::Revolute => 'R',
+            JointKind::Prismatic => 'P',
+        })
+        .collect();
+    let vars: Vec<String> = robot
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            let (var, value) = match j.kind {
+                JointKind::Revolute => ("\\theta", &j.theta),
+                JointKind::Prismatic => ("d", &j.d),
+            };
+            format!("${var}_{{{}}} = {}$", i + 1, math(value))
+        })
+        .collect();
+    out.push_str(&format!(
+        "The manipulator \\emph{{{}}} has {n} joints ({kinds}). The joint variables enter the \
+         Denavit--Hartenberg parameters as {}.\n",
+        text(&robot.name),
+        vars.join(", ")
+    ));
+    let (conv, a, alpha) = match robot.convention {
+        Convention::Standard => (
+            "standard Denavit--Hartenberg convention (Spong): \
+             $A_i = \\mathrm{Rot}_{z,\\theta_i} \\mathrm{Trans}_{z,d_i} \\mathrm{Trans}_{x,a_i} \\mathrm{Rot}_{x,\\alpha_i}$",
+            "$a_i$",
+            "$\\alpha_i$",
+        ),
+        Convention::Modified => (
+            "modified Denavit--Hartenberg convention (Craig): \
+             $A_i = \\mathrm{Rot}_{x,\\alpha_{i-1}} \\mathrm{Trans}_{x,a_{i-1}} \\mathrm{Rot}_{z,\\theta_i} \\mathrm{Trans}_{z,d_i}$",
+            "$a_{i-1}$",
+            "$\\alpha_{i-1}$",
+        ),
+    };
+    out.push_str(&format!(
+        "The Denavit--Hartenberg table, in the {conv}, is\n\\begin{{center}}\n\
+         \\begin{{tabular}}{{cccccc}}\n\\toprule\n\
+         Link & {a} & {alpha} & $d_i$ & $\\theta_i$ & Joint \\\\\n\\midrule\n"
+    ));
+    for (i, j) in robot.joints.iter().enumerate() {
+        out.push_str(&format!(
+            "{} & ${}$ & ${}$ & ${}$ & ${}$ & {} \\\\\n",
+            i + 1,
+            math(&j.a),
+            angle(&j.alpha),
+            math(&j.d),
+            angle(&j.theta),
+            j.kind.name()
+        ));
+    }
+    out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
+    out.push_str(
+        "The masses and the centres of mass (in the frame of their link, $r_{i,c_i}$) are\n\
+         \\begin{center}\n\\begin{tabular}{ccc}\n\\toprule\n\
+         Link & Mass & Centre of mass \\\\\n\\midrule\n",
+    );
+    for (i, l) in robot.links.iter().enumerate() {
+        out.push_str(&format!(
+            "{} & ${}$ & ${}$ \\\\\n",
+            i + 1,
+            math(&l.mass),
+            column(&l.com)
+        ));
+    }
+    out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
+    let inputs: Vec<String> = robot
+        .inputs
+        .iter()
+        .map(|u| format!("${}$", sym(u)))
+        .collect();
+    out.push_str(&format!(
+        "Gravity in frame 0 is $g_0 = {}$. The actuated forces or torques of joints $1, \\dots, {n}$ \
+         are {}.\n\n",
+        column(&robot.gravity),
+        inputs.join(", ")
+    ));
+    out.push_str(
+        "\\subsection*{Frames}\nThe link transforms $A_i$ (the axes $R^{i-1}_i$ and the origin \
+         $o^{i-1}_i$ of frame $i$ in frame $i-1$) are\n",
+    );
+    for (i, jf) in kin.joints.iter().enumerate() {
+        let mut rows = mat_to_rows(&jf.rot);
+        for (k, row) in rows.iter_mut().enumerate() {
+            row.push(jf.origin.0[k].to_expr());
+        }
+        rows.push(vec![Expr::zero(), Expr::zero(), Expr::zero(), Expr::one()]);
+        let lhs = format!("A_{{{}}}", i + 1);
+        let entry = move |r: usize, c: usize| format!("(A_{{{}}})_{{{r}{c}}}", i + 1);
+        out.push_str(&lay.matrix(&lhs, &rows, &entry, false, Grouping::Trig));
+    }
+    out.push_str(&inertia(der, lay, n));
+    out
+}
+
+/// The inertia tensors of the links that rotate, and the facts about the others.
+fn inertia(der: &Derivation, lay: &mut Layout, n: usize) -> String {
+    let robot = der.robot();
+    let kin = der.kinematics();
+    let mut out = String::from("\\subsection*{Inertia}\n");
+    for fact in der.facts() {
+        match fact {
+            Fact::PrismaticOnly => out.push_str(
+                "Since this manipulator has only prismatic joints, the inertia matrices of the links \
+                 do not need to be calculated: $J_{\\omega_i} = 0$ for every link, and the torque \
+                 equations of the Newton--Euler formulation do not need to be written.\n\n",
+            ),
+            Fact::NonRotatingLinks(links) => {
+                let names: Vec<String> = links.iter().map(|i| i.to_string()).collect();
+                let (s, verb, pron) = if links.len() == 1 {
+                    ("", "s", "its inertia tensor is")
+                } else {
+                    ("s", "", "their inertia tensors are")
+                };
+                out.push_str(&format!(
+                    "Link{s} {} never rotate{verb} (only prismatic joints precede), so \
+                     $J_{{\\omega}} = 0$ there and {pron} not needed.\n\n",
+                    names.join(", ")
+                ));
+            }
+            Fact::ConstantMassMatrix => {}
+        }
+    }
+    for i in 0..n {
+        if !kin.rotates[i] {
+            continue;
+        }
+        match &robot.links[i].inertia {
+            Some(t) => {
+                let rows: Vec<Vec<Expr>> = t.iter().map(|r| r.to_vec()).collect();
+                out.push_str(&format!(
+                    "The inertia tensor of link {} about its centre of mass, in frame {}:\n",
+                    i + 1,
+                    i + 1
+                ));
+                let entry = move |r: usize, c: usize| format!("(I_{{{}}})_{{{r}{c}}}", i + 1);
+                out.push_str(&lay.matrix(
+                    &format!("I_{{{}}}", i + 1),
+                    &rows,
+                    &entry,
+                    true,
+                    Grouping::Leading,
+                ));
+            }
+            None => out.push_str(&format!(
+                "Link {} is a point mass ($I_{{{}}} = 0$).\n\n",
+                i + 1,
+                i + 1
+            )),
+        }
+    }
+    out
+}
