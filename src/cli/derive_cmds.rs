@@ -38,7 +38,7 @@ pub enum FrameArg {
 }
 
 /// Reads and parses the scene, printing its warnings to stderr.
-fn load(path: Option<&str>) -> Result<Derivation, CliError> {
+pub(super) fn load(path: Option<&str>) -> Result<Derivation, CliError> {
     let (name, source) = match path {
         Some(p) => (
             p.to_string(),
