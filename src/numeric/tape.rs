@@ -19,6 +19,9 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 type Reg = u32;
 
+/// A monomial's factors: atoms with exponents.
+type Factors = Vec<(AtomId, i32)>;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Instr {
     /// `sin = sin(arg)`, `cos = cos(arg)`.
@@ -212,33 +215,63 @@ impl Builder {
         r
     }
 
+    /// The product of `factors` (atoms with exponents), left to right, memoised; `None` for none.
+    fn product(&mut self, factors: &[(Reg, i32)]) -> Option<Reg> {
+        let mut acc: Option<Reg> = None;
+        for &(r, k) in factors {
+            let p = self.pow(r, k);
+            acc = Some(match acc {
+                None => p,
+                Some(a) => self.mul(a, p),
+            });
+        }
+        acc
+    }
+
+    /// `p` as `Σ_v v · (Σ_t c_t t)`: terms grouped by their rate factor `v` (a monomial in `q̇`, `q̈`),
+    /// so each rate monomial is multiplied in once; within a group, factors that depend only on
+    /// parameters come first, so that their product is set up once, then those in `q`.
     fn poly(&mut self, p: &Poly) -> Reg {
         let mut c = 0.0;
-        let mut terms = Vec::with_capacity(p.len());
+        let mut groups: BTreeMap<Factors, Vec<(f64, Reg)>> = BTreeMap::new();
         for (mono, coef) in p.terms() {
-            // Factors that depend only on parameters first, so that their product is set up once.
-            let mut factors: Vec<(Reg, i32)> = mono
-                .factors()
-                .iter()
-                .map(|&(id, k)| (self.atom(id), k))
-                .collect();
-            if factors.is_empty() {
-                c += coef.to_f64();
-                continue;
-            }
+            let (rate, rest): (Factors, Factors) =
+                mono.factors().iter().partition(|&&(id, _)| is_rate(id));
+            let mut factors: Vec<(Reg, i32)> =
+                rest.iter().map(|&(id, k)| (self.atom(id), k)).collect();
             factors.sort_by_key(|&(r, _)| self.per_call[r as usize]);
-            let mut acc: Option<Reg> = None;
-            for (r, k) in factors {
-                let p = self.pow(r, k);
-                acc = Some(match acc {
-                    None => p,
-                    Some(a) => self.mul(a, p),
-                });
+            let coef = coef.to_f64();
+            match self.product(&factors) {
+                Some(r) => groups.entry(rate).or_default().push((coef, r)),
+                None if rate.is_empty() => c += coef,
+                None => {
+                    let one = self.constant(1.0);
+                    groups.entry(rate).or_default().push((coef, one));
+                }
             }
-            terms.push((coef.to_f64(), acc.expect("a factor")));
+        }
+        let mut terms = Vec::new();
+        for (rate, inner) in groups {
+            let rate: Vec<(Reg, i32)> = rate.iter().map(|&(id, k)| (self.atom(id), k)).collect();
+            match self.product(&rate) {
+                None => terms.extend(inner),
+                Some(v) => match inner.as_slice() {
+                    [(k, r)] => terms.push((*k, self.mul(*r, v))),
+                    _ => {
+                        let s = self.sum(0.0, &inner);
+                        terms.push((1.0, self.mul(s, v)));
+                    }
+                },
+            }
         }
         self.sum(c, &terms)
     }
+}
+
+/// Whether an atom is a rate `q̇_i` or `q̈_i`.
+fn is_rate(id: AtomId) -> bool {
+    atom::class(id) == atom::Class::Coord
+        && matches!(atom::symbol_of(id), Some(Symbol::Coord { order, .. }) if order > 0)
 }
 
 /// Compiles `polys` (in parameters and the coordinates of `dof` joints) into one tape whose outputs are
@@ -313,7 +346,7 @@ impl Tape {
         self.coords.iter().any(|&(_, o, _)| o == order)
     }
 
-    /// The parameters among `needed` that `values` leaves without a value, sorted.
+    /// The parameters that `values` leaves without a value, sorted.
     pub fn missing(&self, values: &HashMap<Symbol, f64>) -> BTreeSet<Symbol> {
         self.params
             .iter()
