@@ -11,6 +11,7 @@
 
 pub mod algebra;
 pub mod dynamics;
+pub mod numeric;
 pub mod parse;
 pub mod print;
 pub mod repl;

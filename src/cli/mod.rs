@@ -5,6 +5,7 @@
 mod algebra_cmds;
 mod derive_cmds;
 mod error;
+mod eval_cmd;
 mod repl_cmd;
 mod sheet_cmd;
 
@@ -70,6 +71,36 @@ pub enum Command {
         /// Also compile it with pdflatex into FILE.pdf next to FILE.tex (needs -o).
         #[arg(long)]
         pdf: bool,
+    },
+    /// Numbers from the derived equations: τ (default), D(q), C(q, q̇), g(q), or the forward dynamics
+    /// q̈ = D⁻¹(u − C q̇ − g), for given parameter values and state.
+    Eval {
+        /// The scene file.
+        scene: Option<String>,
+        /// Parameter values name=value, comma-separated (values are expressions: 3/2, 0.4318, pi/2).
+        #[arg(long = "set", value_name = "NAME=VALUE,...")]
+        set: Vec<String>,
+        /// Joint positions q1,q2,... (expressions).
+        #[arg(long, allow_hyphen_values = true, value_name = "Q1,Q2,...")]
+        q: Option<String>,
+        /// Joint velocities q̇.
+        #[arg(long, allow_hyphen_values = true, value_name = "QD1,QD2,...")]
+        qd: Option<String>,
+        /// Joint accelerations q̈ (for τ).
+        #[arg(long, allow_hyphen_values = true, value_name = "QDD1,QDD2,...")]
+        qdd: Option<String>,
+        /// Inputs (forces/torques) u1,u2,... (for --what qdd).
+        #[arg(long, allow_hyphen_values = true, value_name = "U1,U2,...")]
+        u: Option<String>,
+        /// What to compute.
+        #[arg(long, value_enum, default_value = "tau")]
+        what: eval_cmd::What,
+        /// The output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: eval_cmd::EvalFormat,
+        /// Evaluate exactly (every value rational, e.g. angles as rational multiples of pi).
+        #[arg(long)]
+        exact: bool,
     },
     /// Simplify an expression to its normal form, then tidy it for display.
     Simplify {
@@ -146,6 +177,27 @@ pub fn run(args: Args) -> Result<String, CliError> {
             output,
             pdf,
         } => sheet_cmd::sheet_cmd(scene.as_deref(), method, frame, output.as_deref(), pdf),
+        Command::Eval {
+            scene,
+            set,
+            q,
+            qd,
+            qdd,
+            u,
+            what,
+            format,
+            exact,
+        } => eval_cmd::eval(eval_cmd::EvalArgs {
+            scene: scene.as_deref(),
+            set: &set,
+            q: q.as_deref(),
+            qd: qd.as_deref(),
+            qdd: qdd.as_deref(),
+            u: u.as_deref(),
+            what,
+            format,
+            exact,
+        }),
         Command::Simplify { expr, ascii } => algebra_cmds::simplify(&expr, ascii),
         Command::Diff { expr, vars, ascii } => algebra_cmds::diff(&expr, &vars, ascii),
         Command::Dt { expr, ascii } => algebra_cmds::dt(&expr, ascii),

@@ -41,11 +41,11 @@ pub fn check(der: &Derivation) -> Vec<Claim> {
             .map(|k| format!("equation {}", k + 1))
             .collect();
         let what = format!(
-            "Euler–Lagrange and Newton–Euler ({} frames) give identical equations",
+            "Euler–Lagrange and Newton–Euler ({}) give identical equations",
             if frame == Frame::Body {
-                "body-fixed"
+                "body-fixed frames"
             } else {
-                "inertial"
+                "inertial frame"
             }
         );
         claims.push(claim(&what, bad));

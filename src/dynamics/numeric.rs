@@ -11,6 +11,25 @@ use super::model::{Convention, JointKind, Robot};
 use crate::algebra::{diff, eval_f64, EvalError, Expr, Symbol};
 use nalgebra::{Matrix3, Vector3};
 use std::collections::HashMap;
+use thiserror::Error;
+
+/// Why the numeric inverse dynamics has no answer.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum NumericError {
+    /// A parameter without a value, or an algebraic failure in a DH entry.
+    #[error(transparent)]
+    Eval(#[from] EvalError),
+    /// A state vector with the wrong number of entries.
+    #[error("{what} has {got} entries, the robot has {expected} joints")]
+    StateLength {
+        /// `q`, `q̇` or `q̈`.
+        what: &'static str,
+        /// The number of joints.
+        expected: usize,
+        /// The number of entries given.
+        got: usize,
+    },
+}
 
 fn rot_x(a: f64) -> Matrix3<f64> {
     let (s, c) = a.sin_cos();
@@ -29,8 +48,17 @@ pub fn inverse_dynamics(
     q: &[f64],
     qd: &[f64],
     qdd: &[f64],
-) -> Result<Vec<f64>, EvalError> {
+) -> Result<Vec<f64>, NumericError> {
     let n = robot.dof();
+    for (what, v) in [("q", q), ("q̇", qd), ("q̈", qdd)] {
+        if v.len() != n {
+            return Err(NumericError::StateLength {
+                what,
+                expected: n,
+                got: v.len(),
+            });
+        }
+    }
     let mut vals = params.clone();
     for i in 0..n {
         vals.insert(Symbol::q(i as u32 + 1), q[i]);

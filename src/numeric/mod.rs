@@ -1,0 +1,119 @@
+//! Numbers from the derived equations: a compiled `f64` evaluator of derived polynomials
+//! ([`tape`]), the forward dynamics `q̈ = D⁻¹(u − C q̇ − g)` ([`forward`]), and exact rational
+//! evaluation ([`exact`]).
+//!
+//! The symbolic path stays exact; `f64` appears here (and in `algebra::eval`,
+//! `dynamics::numeric`) only. Nothing here does I/O.
+
+pub mod exact;
+pub mod forward;
+pub mod tape;
+
+pub use exact::{exact_forward_dynamics, exact_values, rationals};
+pub use forward::{condition_number, forward_dynamics, Dynamics, COND_LIMIT};
+pub use tape::{compile, Evaluator, Tape};
+
+use crate::algebra::{EvalError, Symbol};
+use crate::dynamics::Robot;
+use std::collections::BTreeSet;
+use thiserror::Error;
+
+/// Why a number could not be computed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum NumericError {
+    /// Parameters without a value, sorted.
+    #[error("no value given for {}", .0.iter().map(|s| s.ascii_name()).collect::<Vec<_>>().join(", "))]
+    Missing(Vec<Symbol>),
+    /// A state vector of the wrong length.
+    #[error("{what} has {got} value{}, the robot has {expected} joint{}: give {expected}",
+        plural(.got), plural(.expected))]
+    WrongLength {
+        /// Which vector (`q`, `qd`, `qdd`, `u`).
+        what: &'static str,
+        /// The number of joints.
+        expected: usize,
+        /// The number given.
+        got: usize,
+    },
+    /// A coordinate that the robot does not have.
+    #[error("{name} is not a coordinate of a robot with {dof} joints")]
+    UnknownCoordinate {
+        /// The coordinate's name.
+        name: String,
+        /// The number of joints.
+        dof: usize,
+    },
+    /// `D(q)` is singular or too ill-conditioned to invert.
+    #[error(
+        "the mass matrix D(q) is singular or ill-conditioned (condition number {}, limit {COND_LIMIT:e}): \
+         the forward dynamics has no reliable value here (a massless link or chain?)",
+        fmt_cond(.cond)
+    )]
+    Singular {
+        /// The 2-norm condition number `σ_max / σ_min` (infinite when singular).
+        cond: f64,
+    },
+    /// `D(q)` is not positive definite (a negative mass or inertia).
+    #[error("the mass matrix D(q) is not positive definite (condition number {}): check the masses and inertias", fmt_cond(.cond))]
+    NotPositiveDefinite {
+        /// The 2-norm condition number.
+        cond: f64,
+    },
+    /// A value that is not a finite number.
+    #[error("{what} is not a finite number ({value})")]
+    NotFinite {
+        /// What was computed.
+        what: String,
+        /// Its value.
+        value: f64,
+    },
+    /// An exact value that is not rational.
+    #[error(
+        "exact evaluation needs rational results, but {what} = {value} is not rational \
+             (give angles as rational multiples of pi, or drop --exact for decimals)"
+    )]
+    NotRational {
+        /// What was computed.
+        what: String,
+        /// Its exact value, in ASCII syntax.
+        value: String,
+    },
+    /// Failed evaluation of an expression.
+    #[error(transparent)]
+    Eval(#[from] EvalError),
+}
+
+fn plural(n: &usize) -> &'static str {
+    if *n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+fn fmt_cond(c: &f64) -> String {
+    if c.is_finite() {
+        format!("{c:.3e}")
+    } else {
+        "infinite".into()
+    }
+}
+
+/// Every symbol of a robot's scene that is not a coordinate (DH constants, masses, centres of mass,
+/// inertias, gravity), sorted.
+pub fn robot_parameters(robot: &Robot) -> BTreeSet<Symbol> {
+    let mut exprs: Vec<&crate::algebra::Expr> = robot.gravity.iter().collect();
+    for j in &robot.joints {
+        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
+    }
+    for l in &robot.links {
+        exprs.push(&l.mass);
+        exprs.extend(l.com.iter());
+        exprs.extend(l.inertia.iter().flatten().flatten());
+    }
+    exprs
+        .into_iter()
+        .flat_map(|e| e.symbols())
+        .filter(|s| !s.is_coord())
+        .collect()
+}
