@@ -13,7 +13,7 @@ use crate::parse::parse_scene;
 
 /// The kind of joint `i` (1-based) in the generic chain.
 pub fn joint_kind(i: usize) -> JointKind {
-    if i % 3 == 0 {
+    if i.is_multiple_of(3) {
         JointKind::Prismatic
     } else {
         JointKind::Revolute
