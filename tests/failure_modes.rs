@@ -428,7 +428,7 @@ fn measure_release() {
             p.max_rel_error
         );
     }
-    for n in 1..=7 {
+    for n in 1..=8 {
         let t = Instant::now();
         let der = Derivation::new(chain(n)).unwrap();
         let ne = der.newton_euler(Frame::Body).tau.clone();
