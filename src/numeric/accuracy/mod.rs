@@ -25,11 +25,10 @@ pub mod robots;
 
 use super::fd::FdLagrangian;
 use super::{compile, NumericError};
-use crate::algebra::{Rational, Symbol};
+use crate::algebra::Rational;
 use crate::dynamics::numeric::{inverse_dynamics, NumericError as NeError};
 use nested::Nested;
 use robots::{BenchRobot, State};
-use std::collections::HashMap;
 use std::time::Instant;
 
 /// The denominator floor of the relative error.
@@ -124,6 +123,7 @@ pub fn robot_points(
     };
 
     let points: Vec<_> = states.iter().map(|s| bench.exact_point(s)).collect();
+    // `timed` visits the states in order, pass after pass: a counter finds each one's exact point.
     let mut i = 0usize;
     let (secs, exact) = timed(&states, min_seconds, |_| {
         let v = points[i % points.len()].eval(tau);
@@ -185,12 +185,4 @@ pub fn chart(
         min_seconds,
     )?);
     Ok(out)
-}
-
-/// The `f64` parameter values of a map of exact ones.
-pub fn to_f64(params: &HashMap<Symbol, Rational>) -> HashMap<Symbol, f64> {
-    params
-        .iter()
-        .map(|(s, v)| (s.clone(), v.to_f64()))
-        .collect()
 }
