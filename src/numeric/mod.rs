@@ -5,7 +5,9 @@
 //! The symbolic path stays exact; `f64` appears here (and in `algebra::eval`,
 //! `dynamics::numeric`) only. Nothing here does I/O.
 
+pub mod accuracy;
 pub mod exact;
+pub mod fd;
 pub mod forward;
 pub mod tape;
 
@@ -77,6 +79,12 @@ pub enum NumericError {
         what: String,
         /// Its exact value, in ASCII syntax.
         value: String,
+    },
+    /// A finite-difference step that is not a positive finite number.
+    #[error("the finite-difference step h = {h} is not a positive finite number")]
+    InvalidStep {
+        /// The step given.
+        h: f64,
     },
     /// Failed evaluation of an expression.
     #[error(transparent)]
