@@ -446,3 +446,36 @@ fn measure_release() {
         );
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The chart's data, as the benchmark calls it
+
+#[test]
+fn chart_has_every_method_for_both_robots_with_round_off_errors_for_the_symbolic_paths() {
+    let points = accuracy::chart(2, 5, 0.0).unwrap();
+    for robot in ["puma560", "stanford"] {
+        let of = |m: &str| -> Vec<&accuracy::AccuracyPoint> {
+            points
+                .iter()
+                .filter(|p| p.robot == robot && p.method == m)
+                .collect()
+        };
+        assert_eq!(of("exact")[0].max_rel_error, 0.0);
+        for m in ["tape", "nested", "newton-euler"] {
+            let p = of(m);
+            assert_eq!(p.len(), 1, "{robot} {m}");
+            assert!(
+                p[0].max_rel_error < 1e-12,
+                "{robot} {m}: {:e}",
+                p[0].max_rel_error
+            );
+            assert!(p[0].step.is_none() && p[0].seconds_per_eval > 0.0);
+        }
+        let fd = of("fd-lagrange");
+        let hs: Vec<f64> = fd.iter().map(|p| p.step.unwrap()).collect();
+        assert_eq!(hs, steps());
+        // Every finite-difference step is worse than the symbolic τ.
+        assert!(fd.iter().all(|p| p.max_rel_error > 1e-9), "{robot}");
+    }
+    assert_eq!(points.len(), 2 * (4 + steps().len()));
+}
