@@ -30,16 +30,27 @@ const REGS: usize = 1 << 16;
 
 type Reg = u16;
 
-/// One instruction: destination first.
+/// The one arithmetic instruction: `d = a · b + c · e`, or `a · b − c · e` when `sign` is 1. Sums,
+/// differences, products and negations are all of this form (with the constants 0 and 1), so the hot
+/// loop has no branch but its own.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Instr {
-    Add(Reg, Reg, Reg),
-    Sub(Reg, Reg, Reg),
-    Mul(Reg, Reg, Reg),
-    Neg(Reg, Reg),
+struct Fma {
+    d: Reg,
+    a: Reg,
+    b: Reg,
+    c: Reg,
+    e: Reg,
+    sign: u16,
+}
+
+/// A run of instructions of one kind.
+#[derive(Clone, Debug, PartialEq)]
+enum Segment {
+    Fma(Vec<Fma>),
+    /// `[sin, cos, arg]`.
+    Trig(Vec<[Reg; 3]>),
+    /// `d = a^k`.
     Powi(Reg, Reg, i16),
-    /// `(sin, cos) = sin_cos(arg)`.
-    SinCos(Reg, Reg, Reg),
 }
 
 /// A straight-line program: constants and inputs in fixed registers, then the instructions.
@@ -48,7 +59,7 @@ struct Program {
     consts: Vec<(Reg, f64)>,
     /// The register of input slot `order · dof + index`.
     input_base: usize,
-    code: Vec<Instr>,
+    segments: Vec<Segment>,
     outputs: Vec<Reg>,
     n_regs: usize,
 }
@@ -243,32 +254,136 @@ fn reachable(graph: &Graph, outputs: &[Val]) -> Vec<usize> {
     (0..live.len()).filter(|&i| live[i]).collect()
 }
 
-/// Registers: constants, then the `3 · dof` inputs, then temporaries reused once dead. `None` when
-/// more than [`REGS`] registers would be needed.
+/// An operand of an emitted instruction before registers are allocated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Src {
+    K(u64),
+    N(usize),
+}
+
+/// An instruction before register allocation; `node` is the node it computes.
+#[derive(Clone, Debug)]
+enum Pre {
+    /// `(sin, cos)` nodes of one argument (either may be unused).
+    Trig(Option<usize>, Option<usize>, Src),
+    Powi(usize, Src, i16),
+    /// `a · b ± c · e`.
+    Fma(usize, [Src; 4], bool),
+}
+
+impl Pre {
+    fn srcs(&self) -> &[Src] {
+        match self {
+            Pre::Trig(_, _, a) | Pre::Powi(_, a, _) => std::slice::from_ref(a),
+            Pre::Fma(_, s, _) => s,
+        }
+    }
+
+    fn defs(&self) -> [Option<usize>; 2] {
+        match *self {
+            Pre::Trig(s, c, _) => [s, c],
+            Pre::Powi(d, ..) | Pre::Fma(d, ..) => [Some(d), None],
+        }
+    }
+}
+
+/// Emits the nodes that `outputs` need: products used once fused into the sum or difference that uses
+/// them (`a · b ± c · e`, every arithmetic node in that one form), `sin`/`cos` of inputs first. Registers:
+/// constants, then the `3 · dof` inputs, then temporaries reused once dead. `None` when more than
+/// [`REGS`] registers would be needed.
 fn emit(graph: &Graph, outputs: &[Val], dof: usize) -> Option<Program> {
     let nodes = reachable(graph, outputs);
-    // Constants.
-    let mut consts: Vec<(Reg, f64)> = Vec::new();
-    let mut const_reg: HashMap<u64, Reg> = HashMap::new();
-    let mut konst = |bits: u64, consts: &mut Vec<(Reg, f64)>| -> Option<Reg> {
-        if let Some(&r) = const_reg.get(&bits) {
-            return Some(r);
-        }
-        let r = Reg::try_from(consts.len()).ok()?;
-        consts.push((r, f64::from_bits(bits)));
-        const_reg.insert(bits, r);
-        Some(r)
+    let op = |i: usize| graph.nodes[i];
+    let src = |v: Val| match v {
+        Val::K(b) => Src::K(b),
+        Val::N(j) => Src::N(j as usize),
     };
+    let mut uses = vec![0usize; graph.nodes.len()];
     for &i in &nodes {
-        for v in operands(graph.nodes[i]) {
-            if let Val::K(b) = v {
-                konst(b, &mut consts)?;
+        for v in operands(op(i)) {
+            if let Val::N(j) = v {
+                uses[j as usize] += 1;
             }
         }
     }
     for v in outputs {
-        if let Val::K(b) = v {
-            konst(*b, &mut consts)?;
+        if let Val::N(j) = v {
+            uses[*j as usize] += 2; // never fused away
+        }
+    }
+    let (one, zero) = (Src::K(1f64.to_bits()), Src::K(0));
+    // A term `a · b`: a product used once is fused, anything else is itself times one.
+    let term = |v: Val| -> [Src; 2] {
+        if let Val::N(j) = v {
+            if let Op::Mul(a, b) = op(j as usize) {
+                if uses[j as usize] == 1 {
+                    return [src(a), src(b)];
+                }
+            }
+        }
+        [src(v), one]
+    };
+    let mut fused = vec![false; graph.nodes.len()];
+    let mut pre: Vec<Pre> = Vec::new();
+    let mut trig_at: HashMap<Src, usize> = HashMap::new();
+    for &i in &nodes {
+        let mut fuse = |v: Val| {
+            if let Val::N(j) = v {
+                if matches!(op(j as usize), Op::Mul(..)) && uses[j as usize] == 1 {
+                    fused[j as usize] = true;
+                }
+            }
+        };
+        match op(i) {
+            Op::Input(_) => {}
+            Op::Add(x, y) | Op::Sub(x, y) => {
+                let ([a, b], [c, e]) = (term(x), term(y));
+                fuse(x);
+                fuse(y);
+                pre.push(Pre::Fma(i, [a, b, c, e], matches!(op(i), Op::Sub(..))));
+            }
+            Op::Mul(x, y) => pre.push(Pre::Fma(i, [src(x), src(y), zero, zero], false)),
+            Op::Neg(x) => pre.push(Pre::Fma(i, [zero, zero, src(x), one], true)),
+            Op::Powi(x, k) => pre.push(Pre::Powi(i, src(x), i16::try_from(k).ok()?)),
+            Op::Sin(x) | Op::Cos(x) => {
+                let at = *trig_at.entry(src(x)).or_insert_with(|| {
+                    pre.push(Pre::Trig(None, None, src(x)));
+                    pre.len() - 1
+                });
+                if let Pre::Trig(s, c, _) = &mut pre[at] {
+                    *(if matches!(op(i), Op::Sin(_)) { s } else { c }) = Some(i);
+                }
+            }
+        }
+    }
+    // Fused products are not computed on their own; `sin`/`cos` and powers of inputs go first.
+    let early = |p: &Pre| {
+        matches!(p, Pre::Trig(..) | Pre::Powi(..))
+            && p.srcs().iter().all(|s| match *s {
+                Src::K(_) => true,
+                Src::N(j) => matches!(op(j), Op::Input(_)),
+            })
+    };
+    let pre: Vec<Pre> = pre
+        .into_iter()
+        .filter(|p| !matches!(p, Pre::Fma(d, ..) if fused[*d]))
+        .collect();
+    let (mut order, rest): (Vec<Pre>, Vec<Pre>) = pre.into_iter().partition(early);
+    order.extend(rest);
+
+    // Constants, then inputs, then temporaries.
+    let mut consts: Vec<(Reg, f64)> = Vec::new();
+    let mut const_reg: HashMap<u64, Reg> = HashMap::new();
+    let konst_srcs = order
+        .iter()
+        .flat_map(|p| p.srcs().iter().copied())
+        .chain(outputs.iter().map(|&v| src(v)));
+    for s in konst_srcs {
+        if let Src::K(b) = s {
+            if let std::collections::hash_map::Entry::Vacant(e) = const_reg.entry(b) {
+                e.insert(Reg::try_from(consts.len()).ok()?);
+                consts.push((Reg::try_from(consts.len()).ok()?, f64::from_bits(b)));
+            }
         }
     }
     let input_base = consts.len();
@@ -276,19 +391,11 @@ fn emit(graph: &Graph, outputs: &[Val], dof: usize) -> Option<Program> {
     if first_temp > REGS {
         return None;
     }
-    // The partner of each `sin`/`cos` node, when both are live.
-    let mut trig: HashMap<Op, usize> = HashMap::new();
-    for &i in &nodes {
-        if matches!(graph.nodes[i], Op::Sin(_) | Op::Cos(_)) {
-            trig.insert(graph.nodes[i], i);
-        }
-    }
-    // Last use of each node (usize::MAX for outputs).
     let mut last = vec![0usize; graph.nodes.len()];
-    for &i in &nodes {
-        for v in operands(graph.nodes[i]) {
-            if let Val::N(j) = v {
-                last[j as usize] = last[j as usize].max(i);
+    for (k, p) in order.iter().enumerate() {
+        for s in p.srcs() {
+            if let Src::N(j) = *s {
+                last[j] = k;
             }
         }
     }
@@ -298,123 +405,105 @@ fn emit(graph: &Graph, outputs: &[Val], dof: usize) -> Option<Program> {
         }
     }
     let mut reg: Vec<Option<Reg>> = vec![None; graph.nodes.len()];
+    for &i in &nodes {
+        if let Op::Input(slot) = op(i) {
+            reg[i] = Some(Reg::try_from(input_base + slot as usize).ok()?);
+        }
+    }
     let mut free: Vec<Reg> = Vec::new();
     let mut n_regs = first_temp;
-    let mut code = Vec::new();
-    let alloc = |free: &mut Vec<Reg>, n_regs: &mut usize| -> Option<Reg> {
-        free.pop().or_else(|| {
-            let r = Reg::try_from(*n_regs).ok()?;
-            *n_regs += 1;
-            Some(r)
-        })
-    };
-    for &i in &nodes {
-        let op = graph.nodes[i];
-        if let Op::Input(slot) = op {
-            reg[i] = Some(Reg::try_from(input_base + slot as usize).ok()?);
-            continue;
-        }
-        if reg[i].is_some() {
-            continue; // the partner of an earlier `sin_cos`
-        }
-        let r = |v: Val| -> Reg {
-            match v {
-                Val::K(b) => const_reg_of(&consts, b),
-                Val::N(j) => reg[j as usize].expect("operands come first"),
-            }
-        };
-        let (a, b) = {
-            let mut it = operands(op);
-            (it.next().map(r), it.next().map(r))
-        };
-        // Free operands that die here (not inputs or constants).
-        for v in operands(op) {
-            if let Val::N(j) = v {
-                let j = j as usize;
-                if last[j] == i && !matches!(graph.nodes[j], Op::Input(_)) {
-                    if let Some(rj) = reg[j] {
-                        if !free.contains(&rj) {
-                            free.push(rj);
-                        }
+    let mut segments: Vec<Segment> = Vec::new();
+    for (k, p) in order.iter().enumerate() {
+        let r: Vec<Reg> = p
+            .srcs()
+            .iter()
+            .map(|s| match *s {
+                Src::K(b) => Some(const_reg[&b]),
+                Src::N(j) => reg[j],
+            })
+            .collect::<Option<_>>()?;
+        for s in p.srcs() {
+            if let Src::N(j) = *s {
+                if last[j] == k && !matches!(op(j), Op::Input(_)) {
+                    if let Some(rj) = reg[j].take() {
+                        free.push(rj);
                     }
                 }
             }
         }
-        let (a, b) = (a.expect("an operand"), b);
-        match op {
-            Op::Sin(x) | Op::Cos(x) => {
-                let partner = match op {
-                    Op::Sin(_) => Op::Cos(x),
-                    _ => Op::Sin(x),
-                };
-                let s = alloc(&mut free, &mut n_regs)?;
-                let c = alloc(&mut free, &mut n_regs)?;
-                let (sin, cos) = if matches!(op, Op::Sin(_)) {
-                    (s, c)
-                } else {
-                    (c, s)
-                };
-                reg[i] = Some(s);
-                if let Some(&p) = trig.get(&partner) {
-                    reg[p] = Some(c);
-                    // A partner that is never used after this point still needs its register.
-                    last[p] = last[p].max(i);
-                } else {
-                    free.push(c);
-                }
-                code.push(Instr::SinCos(sin, cos, a));
+        let mut dst = [0 as Reg; 2];
+        for (slot, def) in p.defs().iter().enumerate() {
+            let d = free.pop().map_or_else(
+                || {
+                    let d = Reg::try_from(n_regs).ok();
+                    n_regs += 1;
+                    d
+                },
+                Some,
+            )?;
+            dst[slot] = d;
+            match def {
+                Some(node) => reg[*node] = Some(d),
+                None => free.push(d),
             }
-            _ => {
-                let d = alloc(&mut free, &mut n_regs)?;
-                reg[i] = Some(d);
-                code.push(match op {
-                    Op::Add(..) => Instr::Add(d, a, b.expect("binary")),
-                    Op::Sub(..) => Instr::Sub(d, a, b.expect("binary")),
-                    Op::Mul(..) => Instr::Mul(d, a, b.expect("binary")),
-                    Op::Neg(_) => Instr::Neg(d, a),
-                    Op::Powi(_, k) => Instr::Powi(d, a, i16::try_from(k).ok()?),
-                    Op::Input(_) | Op::Sin(_) | Op::Cos(_) => unreachable!("handled above"),
-                });
+        }
+        match p {
+            Pre::Trig(..) => match segments.last_mut() {
+                Some(Segment::Trig(v)) => v.push([dst[0], dst[1], r[0]]),
+                _ => segments.push(Segment::Trig(vec![[dst[0], dst[1], r[0]]])),
+            },
+            Pre::Powi(_, _, k) => segments.push(Segment::Powi(dst[0], r[0], *k)),
+            Pre::Fma(_, _, neg) => {
+                let f = Fma {
+                    d: dst[0],
+                    a: r[0],
+                    b: r[1],
+                    c: r[2],
+                    e: r[3],
+                    sign: u16::from(*neg),
+                };
+                match segments.last_mut() {
+                    Some(Segment::Fma(v)) => v.push(f),
+                    _ => segments.push(Segment::Fma(vec![f])),
+                }
             }
         }
     }
     let outputs = outputs
         .iter()
         .map(|v| match *v {
-            Val::K(b) => const_reg_of(&consts, b),
-            Val::N(j) => reg[j as usize].expect("outputs are live"),
+            Val::K(b) => const_reg[&b],
+            Val::N(j) => reg[j as usize].expect("outputs stay live"),
         })
         .collect();
     Some(Program {
         consts,
         input_base,
-        code,
+        segments,
         outputs,
         n_regs,
     })
 }
 
-fn const_reg_of(consts: &[(Reg, f64)], bits: u64) -> Reg {
-    consts
-        .iter()
-        .find(|(_, x)| x.to_bits() == bits)
-        .map(|&(r, _)| r)
-        .expect("constants are registered first")
-}
-
-fn run(code: &[Instr], r: &mut [f64; REGS]) {
-    for ins in code {
-        match *ins {
-            Instr::Add(d, a, b) => r[d as usize] = r[a as usize] + r[b as usize],
-            Instr::Sub(d, a, b) => r[d as usize] = r[a as usize] - r[b as usize],
-            Instr::Mul(d, a, b) => r[d as usize] = r[a as usize] * r[b as usize],
-            Instr::Neg(d, a) => r[d as usize] = -r[a as usize],
-            Instr::Powi(d, a, k) => r[d as usize] = r[a as usize].powi(k as i32),
-            Instr::SinCos(s, c, a) => {
-                let (x, y) = r[a as usize].sin_cos();
-                r[s as usize] = x;
-                r[c as usize] = y;
+fn run(segments: &[Segment], r: &mut [f64; REGS]) {
+    for seg in segments {
+        match seg {
+            Segment::Fma(code) => {
+                for f in code {
+                    let x = r[f.a as usize] * r[f.b as usize];
+                    let y = r[f.c as usize] * r[f.e as usize];
+                    // `± y` without a branch: the sign bit flipped when `sign` is 1.
+                    r[f.d as usize] = x + f64::from_bits(y.to_bits() ^ (u64::from(f.sign) << 63));
+                }
             }
+            Segment::Trig(code) => {
+                for &[s, c, a] in code {
+                    let (x, y) = r[a as usize].sin_cos();
+                    r[s as usize] = x;
+                    r[c as usize] = y;
+                }
+            }
+            &Segment::Powi(d, a, k) => r[d as usize] = r[a as usize].powi(i32::from(k)),
         }
     }
 }
@@ -429,7 +518,15 @@ impl TauProgram {
     /// large for its register file).
     pub fn instruction_count(&self) -> usize {
         match &self.engine {
-            Engine::Straight(p, _) => p.code.len(),
+            Engine::Straight(p, _) => p
+                .segments
+                .iter()
+                .map(|s| match s {
+                    Segment::Fma(v) => v.len(),
+                    Segment::Trig(v) => v.len(),
+                    Segment::Powi(..) => 1,
+                })
+                .sum(),
             Engine::Tape(ev) => ev.tape().instruction_counts().1,
         }
     }
@@ -464,7 +561,7 @@ impl TauProgram {
                         regs[at..at + n].copy_from_slice(xs);
                     }
                 }
-                run(&p.code, regs);
+                run(&p.segments, regs);
                 for (o, &r) in self.out.iter_mut().zip(&p.outputs) {
                     *o = regs[r as usize];
                 }
