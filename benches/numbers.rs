@@ -42,6 +42,17 @@ fn bench(c: &mut Criterion) {
                 .unwrap()[0]
         })
     });
+    group.bench_function("six sin_cos alone (reference)", |b| {
+        b.iter(|| {
+            black_box(&q)
+                .iter()
+                .map(|x| {
+                    let (s, c) = x.sin_cos();
+                    s + c
+                })
+                .sum::<f64>()
+        })
+    });
     group.bench_function("nalgebra Newton–Euler", |b| {
         b.iter(|| {
             inverse_dynamics(

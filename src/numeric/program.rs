@@ -104,10 +104,13 @@ pub fn compile_tau(
     let tau: Vec<Val> = recurse(&traced).tau.iter().map(|t| t.val).collect();
     let graph = tracer.graph.borrow();
     let mut uses = [false; 2];
-    for op in reachable(&graph, &tau).iter().filter_map(|&i| match graph.nodes[i] {
-        Op::Input(slot) => Some(slot as usize / n.max(1)),
-        _ => None,
-    }) {
+    for op in reachable(&graph, &tau)
+        .iter()
+        .filter_map(|&i| match graph.nodes[i] {
+            Op::Input(slot) => Some(slot as usize / n.max(1)),
+            _ => None,
+        })
+    {
         if op > 0 {
             uses[op - 1] = true;
         }

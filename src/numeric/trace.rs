@@ -96,8 +96,8 @@ impl Graph {
     pub(crate) fn add(&mut self, a: Val, b: Val) -> Val {
         match (a.constant(), b.constant()) {
             (Some(x), Some(y)) => return Val::k(x + y),
-            (Some(x), None) if x == 0.0 => return b,
-            (None, Some(y)) if y == 0.0 => return a,
+            (Some(0.0), None) => return b,
+            (None, Some(0.0)) => return a,
             _ => {}
         }
         if let Some(Op::Neg(y)) = self.op_of(b) {
@@ -116,8 +116,8 @@ impl Graph {
         }
         match (a.constant(), b.constant()) {
             (Some(x), Some(y)) => return Val::k(x - y),
-            (Some(x), None) if x == 0.0 => return self.neg(b),
-            (None, Some(y)) if y == 0.0 => return a,
+            (Some(0.0), None) => return self.neg(b),
+            (None, Some(0.0)) => return a,
             _ => {}
         }
         if let Some(Op::Neg(y)) = self.op_of(b) {
@@ -423,7 +423,10 @@ mod tests {
         // x + (−y) is one subtraction; a repeated product is one node.
         let p = q.mul(&q);
         let r = q.add(&p.neg());
-        assert_eq!(tr.graph.borrow().nodes[r.val_index()], Op::Sub(q.val, p.val));
+        assert_eq!(
+            tr.graph.borrow().nodes[r.val_index()],
+            Op::Sub(q.val, p.val)
+        );
         assert_eq!(q.mul(&q).val, p.val);
         // q, −q, q·q, −(q·q), q − q·q
         assert_eq!(tr.graph.borrow().nodes.len(), 5);
