@@ -372,7 +372,7 @@ fn emit(graph: &Graph, outputs: &[Val], dof: usize) -> Option<Program> {
         .filter(|p| !matches!(p, Pre::Fma(d, ..) if fused[*d]))
         .collect();
     let (mut order, rest): (Vec<Pre>, Vec<Pre>) = pre.into_iter().partition(early);
-    order.extend(rest);
+    order.extend(schedule(rest, graph.nodes.len()));
 
     // Constants, then inputs, then temporaries.
     let mut consts: Vec<(Reg, f64)> = Vec::new();
@@ -488,6 +488,61 @@ fn emit(graph: &Graph, outputs: &[Val], dof: usize) -> Option<Program> {
     })
 }
 
+/// Orders instructions (a topological order in) by list scheduling, longest path to the end first, so
+/// that independent chains interleave and the processor overlaps them.
+fn schedule(pre: Vec<Pre>, n_nodes: usize) -> Vec<Pre> {
+    use std::collections::BinaryHeap;
+    let mut at = vec![usize::MAX; n_nodes];
+    for (k, p) in pre.iter().enumerate() {
+        for d in p.defs().into_iter().flatten() {
+            at[d] = k;
+        }
+    }
+    let deps: Vec<Vec<usize>> = pre
+        .iter()
+        .map(|p| {
+            let mut d: Vec<usize> = p
+                .srcs()
+                .iter()
+                .filter_map(|s| match *s {
+                    Src::N(j) if at[j] != usize::MAX => Some(at[j]),
+                    _ => None,
+                })
+                .collect();
+            d.sort_unstable();
+            d.dedup();
+            d
+        })
+        .collect();
+    let mut users: Vec<Vec<usize>> = vec![Vec::new(); pre.len()];
+    for (k, d) in deps.iter().enumerate() {
+        for &j in d {
+            users[j].push(k);
+        }
+    }
+    let mut height = vec![0usize; pre.len()];
+    for k in (0..pre.len()).rev() {
+        height[k] = 1 + users[k].iter().map(|&u| height[u]).max().unwrap_or(0);
+    }
+    let mut waiting: Vec<usize> = deps.iter().map(Vec::len).collect();
+    let mut ready: BinaryHeap<(usize, std::cmp::Reverse<usize>)> = (0..pre.len())
+        .filter(|&k| waiting[k] == 0)
+        .map(|k| (height[k], std::cmp::Reverse(k)))
+        .collect();
+    let mut slots: Vec<Option<Pre>> = pre.into_iter().map(Some).collect();
+    let mut out = Vec::with_capacity(slots.len());
+    while let Some((_, std::cmp::Reverse(k))) = ready.pop() {
+        out.extend(slots[k].take());
+        for &u in &users[k] {
+            waiting[u] -= 1;
+            if waiting[u] == 0 {
+                ready.push((height[u], std::cmp::Reverse(u)));
+            }
+        }
+    }
+    out
+}
+
 fn run(segments: &[Segment], r: &mut [f64; REGS]) {
     for seg in segments {
         match seg {
@@ -575,5 +630,44 @@ impl TauProgram {
             }
         }
         Ok(&self.out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::scalar::Scalar;
+
+    /// `q1 q2 + q3 q1` and `−q1 q2` from one traced graph: the product used twice stands alone, the
+    /// one used once is fused, the negation is one instruction, and the values are right.
+    #[test]
+    fn fuses_single_use_products_and_evaluates() {
+        let t = Tracer::new(3, HashMap::new());
+        let q: Vec<Traced> = (0..3)
+            .map(|i| {
+                let v = t.graph.borrow_mut().input(i);
+                t.wrap(v)
+            })
+            .collect();
+        let p = q[0].mul(&q[1]);
+        let outs = [p.add(&q[2].mul(&q[0])).val, p.neg().val];
+        let prog = emit(&t.graph.borrow(), &outs, 1).expect("small");
+        let n: usize = prog
+            .segments
+            .iter()
+            .map(|s| match s {
+                Segment::Fma(v) => v.len(),
+                _ => 0,
+            })
+            .sum();
+        assert_eq!(n, 3, "{:?}", prog.segments);
+        let mut regs: Box<[f64; REGS]> = vec![0.0; REGS].into_boxed_slice().try_into().unwrap();
+        for &(r, x) in &prog.consts {
+            regs[r as usize] = x;
+        }
+        regs[prog.input_base..prog.input_base + 3].copy_from_slice(&[2.0, 3.0, 5.0]);
+        run(&prog.segments, &mut regs);
+        let got: Vec<f64> = prog.outputs.iter().map(|&r| regs[r as usize]).collect();
+        assert_eq!(got, vec![16.0, -6.0]);
     }
 }
