@@ -1,5 +1,6 @@
 //! `symdyn eval`: numbers from a scene's derived equations — the inverse dynamics `τ`, `D(q)`,
-//! `C(q, q̇)`, `g(q)`, or the forward dynamics `q̈` — in `f64` (a compiled tape) or exactly.
+//! `C(q, q̇)`, `g(q)`, or the forward dynamics `q̈` — in `f64` (a compiled tape; for `τ`, the traced
+//! Newton–Euler program) or exactly.
 
 use super::CliError;
 use std::collections::HashMap;
@@ -291,6 +292,11 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
             let mut dynamics = numeric::Dynamics::new(lag, &pf).map_err(numeric)?;
             let (x, cond) = dynamics.qdd(&qf, &qdf, &uf).map_err(numeric)?;
             (x, Some(cond))
+        } else if what == What::Tau {
+            // The straight-line program of the traced Newton–Euler: the fastest path to τ.
+            let mut prog = numeric::compile_tau(&der, &pf).map_err(numeric)?;
+            let out = prog.eval(&qf, &qdf, &qddf).map_err(numeric)?;
+            (out.to_vec(), None)
         } else {
             let mut ev = numeric::compile(&polys, n)
                 .and_then(|t| t.bind(&pf))

@@ -9,10 +9,13 @@ pub mod accuracy;
 pub mod exact;
 pub mod fd;
 pub mod forward;
+pub mod program;
 pub mod tape;
+pub mod trace;
 
 pub use exact::{exact_forward_dynamics, exact_values, rationals};
 pub use forward::{condition_number, forward_dynamics, Dynamics, COND_LIMIT};
+pub use program::{compile_tau, TauProgram};
 pub use tape::{compile, Evaluator, Tape};
 
 use crate::algebra::{EvalError, Symbol};
