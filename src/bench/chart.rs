@@ -290,25 +290,31 @@ fn draw<DB: DrawingBackend>(
                 ))
                 .map_err(chart_err)?;
         }
-        let area = chart.plotting_area();
-        for &(x, y) in &series {
-            let at = area.map_coordinate(&(x, y));
-            marker(&area.strip_coord_spec(), k, at, color)?;
-        }
+        let style = color.filled();
+        let drawn = match k % 3 {
+            0 => chart
+                .draw_series(series.iter().map(|&p| Circle::new(p, 5, style)))
+                .map(|_| ()),
+            1 => chart
+                .draw_series(series.iter().map(|&p| TriangleMarker::new(p, 7, style)))
+                .map(|_| ()),
+            _ => chart
+                .draw_series(
+                    series
+                        .iter()
+                        .map(|&p| Cross::new(p, 5, Color::stroke_width(&color, 2))),
+                )
+                .map(|_| ()),
+        };
+        drawn.map_err(chart_err)?;
     }
-    let area = chart.plotting_area().strip_coord_spec();
     let label_style = ("sans-serif", 12).into_font().color(&BLACK);
-    for p in &pts {
-        if !p.label.is_empty() {
-            let (px, py) = chart.plotting_area().map_coordinate(&(tx(p.x), ty(p.y)));
-            area.draw(&Text::new(
-                p.label.clone(),
-                (px + 7, py - 14),
-                label_style.clone(),
-            ))
-            .map_err(chart_err)?;
-        }
-    }
+    chart
+        .draw_series(pts.iter().filter(|p| !p.label.is_empty()).map(|p| {
+            EmptyElement::at((tx(p.x), ty(p.y)))
+                + Text::new(p.label.clone(), (7, -14), label_style.clone())
+        }))
+        .map_err(chart_err)?;
     // The legend and the notes, in the side panel.
     let text = ("sans-serif", 15).into_font().color(&BLACK);
     let small = ("sans-serif", 12).into_font().color(&BLACK);

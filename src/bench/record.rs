@@ -220,7 +220,7 @@ mod tests {
         );
         assert_eq!(
             r.to_csv().matches(',').count(),
-            CSV_HEADER.matches(',').count() + 2
+            CSV_HEADER.matches(',').count() + 1
         );
         assert!(Record::from_json("{\"robot\": 1}").is_err());
     }

@@ -427,11 +427,11 @@ fn run_peers(
 //             points
 //                 .into_iter()
 //                 .map(|p| Point {
-//                     label: p.robot,
-//                     group: match p.step {
-//                         Some(h) => format!("{} (h = {h:e})", p.method),
-//                         None => p.method,
+//                     label: match p.step {
+//                         Some(h) => format!("{} h={h:.0e}", p.robot),
+//                         None => p.robot,
 //                     },
+//                     group: p.method,
 //                     x: p.seconds_per_eval,
 //                     y: p.max_rel_error, // exact 0 is placed at chart::ZERO_ERROR_FLOOR, with a note
 //                 })
