@@ -24,9 +24,11 @@ pub struct Machine {
     pub build: String,
 }
 
-/// Seconds in a readable unit: `3.1 µs`, `12.3 ms`, `4.56 s`.
+/// Seconds in a readable unit: `20.5 ns`, `3.1 µs`, `12.3 ms`, `4.56 s`.
 pub fn fmt_seconds(s: f64) -> String {
-    if s < 1e-3 {
+    if s < 1e-6 {
+        format!("{:.1} ns", s * 1e9)
+    } else if s < 1e-3 {
         format!("{:.3} µs", s * 1e6)
     } else if s < 1.0 {
         format!("{:.3} ms", s * 1e3)
@@ -107,6 +109,20 @@ pub fn ratios(records: &[Record]) -> Vec<Ratio> {
         }
     }
     out
+}
+
+/// A ratio with two significant digits at least: `420`, `6.7`, `0.027`.
+pub fn fmt_ratio(r: f64) -> String {
+    if !(r.is_finite() && r > 0.0) {
+        format!("{r}")
+    } else if r >= 100.0 {
+        format!("{r:.0}")
+    } else if r >= 1.0 {
+        format!("{r:.1}")
+    } else {
+        let digits = ((-r.log10().floor()) as usize + 1).min(12);
+        format!("{r:.digits$}")
+    }
 }
 
 fn opt(x: Option<u64>) -> String {
@@ -224,12 +240,13 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("(derivation only, no interpreter start-up). The factor in parentheses is peer time / symdyn time ");
         s.push_str("(symdyn: Euler–Lagrange + Newton–Euler + proof in one process), measured in the same run. The peers' ");
         s.push_str("operation counts are their own.\n\n");
-        s.push_str("| robot | n | symdyn EL+NE+proof | SymPy | SymPy + trigsimp | SymEngine | peer ops (SymPy / trigsimp / SymEngine) |\n");
-        s.push_str("| --- | --- | --- | --- | --- | --- | --- |\n");
+        s.push_str("| robot | n | symdyn EL | symdyn EL+NE+proof | SymPy | SymPy + trigsimp | SymEngine | peer ops (SymPy / trigsimp / SymEngine) |\n");
+        s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
         let rs = ratios(records);
         for (robot, n) in peer_robots {
             let mut row = format!(
-                "| {robot} | {n} | {} |",
+                "| {robot} | {n} | {} | {} |",
+                cell(find(records, &robot, "el")),
                 cell(find(records, &robot, "el+ne+proof"))
             );
             let mut ops = Vec::new();
@@ -238,7 +255,7 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
                 let ratio = rs
                     .iter()
                     .find(|x| x.robot == robot && x.peer == peer)
-                    .map(|x| format!(" ({:.1}×)", x.ratio))
+                    .map(|x| format!(" ({}×)", fmt_ratio(x.ratio)))
                     .unwrap_or_default();
                 row.push_str(&format!(" {}{ratio} |", cell(r)));
                 ops.push(opt(r.and_then(|r| r.ops)));
@@ -284,8 +301,13 @@ mod tests {
 
     #[test]
     fn seconds_print_in_readable_units() {
+        assert_eq!(fmt_seconds(2.05e-8), "20.5 ns");
         assert_eq!(fmt_seconds(3.1e-6), "3.100 µs");
         assert_eq!(fmt_seconds(0.0123), "12.300 ms");
         assert_eq!(fmt_seconds(4.5), "4.500 s");
+        assert_eq!(fmt_ratio(422.3), "422");
+        assert_eq!(fmt_ratio(6.66), "6.7");
+        assert_eq!(fmt_ratio(0.027), "0.027");
+        assert_eq!(fmt_ratio(0.5), "0.50");
     }
 }

@@ -419,7 +419,8 @@ fn run_peers(
 
 // ───────────────────────────────────────────────────────────────────────────────────────────────
 // LEAD: connect `symdyn::numeric::accuracy::chart` here, when branch `fail` is merged. This is the
-// only place the speed–accuracy chart gets its data; replace the body with:
+// only place the speed–accuracy chart gets its data; replace the body with the code below (checked:
+// it compiles and draws against fail's commit a71c624):
 //
 //     let (states, seed, min_seconds) = if quick { (20, 1, 0.02) } else { (200, 1, 0.2) };
 //     match symdyn::numeric::accuracy::chart(states, seed, min_seconds) {
@@ -427,11 +428,15 @@ fn run_peers(
 //             points
 //                 .into_iter()
 //                 .map(|p| Point {
+//                     // Finite differences: one series per robot, each point labelled by its step.
 //                     label: match p.step {
-//                         Some(h) => format!("{} h={h:.0e}", p.robot),
-//                         None => p.robot,
+//                         Some(h) => format!("h={h:.0e}"),
+//                         None => p.robot.clone(),
 //                     },
-//                     group: p.method,
+//                     group: match p.step {
+//                         Some(_) => format!("{}, {}", p.method, p.robot),
+//                         None => p.method,
+//                     },
 //                     x: p.seconds_per_eval,
 //                     y: p.max_rel_error, // exact 0 is placed at chart::ZERO_ERROR_FLOOR, with a note
 //                 })
