@@ -252,8 +252,9 @@ pub fn measure(
             let mut r = ok(method.name(), secs);
             r.calls = Some(calls);
             r.note = format!(
-                "tape: {body} instructions per call, {setup} at bind; {} outputs",
-                polys.len()
+                "tape: {body} instructions per call, {setup} at bind; {} output{}",
+                polys.len(),
+                if polys.len() == 1 { "" } else { "s" }
             );
             Ok(vec![r])
         }
