@@ -10,6 +10,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod algebra;
+pub mod bench;
 pub mod chains;
 pub mod dynamics;
 pub mod numeric;

@@ -3,6 +3,7 @@
 //! answers (and returns an empty string).
 
 mod algebra_cmds;
+mod bench_cmd;
 mod derive_cmds;
 mod error;
 mod eval_cmd;
@@ -102,6 +103,51 @@ pub enum Command {
         #[arg(long)]
         exact: bool,
     },
+    /// Benchmarks: derivation times, result sizes, numeric evaluation, peak memory, end-to-end runs and
+    /// (with --peers) the SymPy/SymEngine peers; writes results.csv, benchmarks.md and charts (SVG,
+    /// PNG) into --out. Use a release build: `cargo run --release -- bench`.
+    Bench {
+        /// Fewer chains (n ≤ 6), shorter evaluation loops, a 10 s limit per process.
+        #[arg(long)]
+        quick: bool,
+        /// The output directory.
+        #[arg(long, default_value = "docs/bench")]
+        out: String,
+        /// Also run the Python peers (bench/peers/el_peer.py in a virtual environment).
+        #[arg(long)]
+        peers: bool,
+        /// Time limit per measuring process, seconds (default 60; 10 with --quick).
+        #[arg(long, value_name = "SECONDS")]
+        timeout: Option<f64>,
+        /// The largest generic chain (default 12; 6 with --quick).
+        #[arg(long, value_name = "N")]
+        max_joints: Option<usize>,
+        /// Only these example scenes, comma-separated (`none` for none; default all).
+        #[arg(long, value_name = "NAME,...")]
+        examples: Option<String>,
+        /// Run the peers with this Python as it is, instead of the virtual environment.
+        #[arg(long, value_name = "PYTHON")]
+        python: Option<String>,
+        /// The peers' virtual environment (created with python3 -m venv, then pip install).
+        #[arg(long, value_name = "DIR", default_value = "target/bench-venv")]
+        venv: String,
+        /// The peer script.
+        #[arg(long, value_name = "FILE", default_value = "bench/peers/el_peer.py")]
+        peer_script: String,
+    },
+    /// One benchmark measurement in this process, printed as JSON lines (used by `bench`).
+    #[command(hide = true)]
+    BenchOne {
+        /// The robot: an example name or chain-N.
+        #[arg(long)]
+        robot: String,
+        /// The method: el, ne, proof, eval-tau, eval-d, eval-ne-numeric.
+        #[arg(long)]
+        method: String,
+        /// The least time of an evaluation loop, seconds.
+        #[arg(long, default_value_t = 0.5)]
+        min_seconds: f64,
+    },
     /// Simplify an expression to its normal form, then tidy it for display.
     Simplify {
         /// The expression, e.g. "sin(q1)^2 + cos(q1)^2".
@@ -198,6 +244,32 @@ pub fn run(args: Args) -> Result<String, CliError> {
             format,
             exact,
         }),
+        Command::Bench {
+            quick,
+            out,
+            peers,
+            timeout,
+            max_joints,
+            examples,
+            python,
+            venv,
+            peer_script,
+        } => bench_cmd::bench(bench_cmd::BenchArgs {
+            quick,
+            out,
+            peers,
+            timeout,
+            max_joints,
+            examples,
+            python,
+            venv,
+            peer_script,
+        }),
+        Command::BenchOne {
+            robot,
+            method,
+            min_seconds,
+        } => bench_cmd::bench_one(&robot, &method, min_seconds),
         Command::Simplify { expr, ascii } => algebra_cmds::simplify(&expr, ascii),
         Command::Diff { expr, vars, ascii } => algebra_cmds::diff(&expr, &vars, ascii),
         Command::Dt { expr, ascii } => algebra_cmds::dt(&expr, ascii),

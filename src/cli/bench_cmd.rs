@@ -1,0 +1,762 @@
+//! `symdyn bench`: the benchmark runner. Everything that touches the outside world lives here: it
+//! spawns one child process per (robot, method) measurement (`symdyn bench-one`, a hidden command)
+//! with a hard time limit, reads each child's JSON records, times whole `symdyn` processes end to end,
+//! sets up a Python virtual environment and runs the peers, and writes `results.csv`,
+//! `benchmarks.md` and the charts. What is measured and how it is reported is `symdyn::bench`.
+//!
+//! A child measures itself and reports its own peak resident memory (`VmHWM` of
+//! `/proc/self/status`), so every measurement starts from a clean process. A peer (Python) cannot, so
+//! its peak is the last `VmHWM` read from `/proc/PID/status` while the runner polls it (every few
+//! milliseconds): a close lower bound. When a child outlives the time limit it is killed and
+//! recorded as a timeout, and on the generic chains the larger `n` for that method are skipped.
+
+use super::CliError;
+use std::collections::HashSet;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+use symdyn::bench::chart::{self, Point};
+use symdyn::bench::peer::{parse_peer_answer, robot_json};
+use symdyn::bench::record::{to_csv, Record, Status};
+use symdyn::bench::report::{markdown, Machine};
+use symdyn::bench::{measure, Method, RobotSpec};
+
+/// The options of `symdyn bench`.
+#[derive(Clone, Debug)]
+pub struct BenchArgs {
+    /// Fewer chains (n ≤ 6), shorter evaluation loops, a 10 s limit.
+    pub quick: bool,
+    /// Output directory.
+    pub out: String,
+    /// Run the Python peers.
+    pub peers: bool,
+    /// Time limit per child process, seconds (default 60, or 10 with `--quick`).
+    pub timeout: Option<f64>,
+    /// Largest chain (default 12, or 6 with `--quick`).
+    pub max_joints: Option<usize>,
+    /// Example scenes to measure (default all); `none` for none.
+    pub examples: Option<String>,
+    /// A Python interpreter to use as it is, instead of the virtual environment.
+    pub python: Option<String>,
+    /// The virtual environment's directory.
+    pub venv: String,
+    /// The peer script.
+    pub peer_script: String,
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CliError + '_ {
+    move |source| CliError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// `symdyn bench-one`: one measurement in this process, printed as JSON lines (one per record), each
+/// with this process's peak memory.
+pub fn bench_one(robot: &str, method: &str, min_seconds: f64) -> Result<String, CliError> {
+    let spec = RobotSpec::parse(robot).map_err(|e| CliError::Input(format!("error: {e}")))?;
+    let method = Method::parse(method).map_err(|e| CliError::Input(format!("error: {e}")))?;
+    let mut recs =
+        measure(&spec, method, min_seconds).map_err(|e| CliError::Input(format!("error: {e}")))?;
+    let peak = vm_hwm_kib("self");
+    let mut out = String::new();
+    for r in &mut recs {
+        r.peak_rss_kib = peak;
+        out.push_str(&r.to_json().to_string());
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// `VmHWM` of `/proc/PID/status`, KiB (`None` where there is no such file).
+fn vm_hwm_kib(pid: &str) -> Option<u64> {
+    let s = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    s.lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+}
+
+/// How a child process ended.
+struct Outcome {
+    /// `None`: killed at the time limit.
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+    seconds: f64,
+    /// The last `VmHWM` seen while polling.
+    peak_kib: Option<u64>,
+}
+
+/// Runs `cmd` with a hard time limit, polling its peak memory.
+fn run_limited(mut cmd: Command, limit: f64) -> std::io::Result<Outcome> {
+    cmd.stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    let start = Instant::now();
+    let mut child = cmd.spawn()?;
+    let pid = child.id().to_string();
+    let reader = |pipe: Option<Box<dyn Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut s = String::new();
+            if let Some(mut p) = pipe {
+                let _ = p.read_to_string(&mut s);
+            }
+            s
+        })
+    };
+    let out = reader(
+        child
+            .stdout
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let err = reader(
+        child
+            .stderr
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let mut peak = None;
+    let mut nap = Duration::from_micros(200);
+    let code = loop {
+        if let Some(k) = vm_hwm_kib(&pid) {
+            peak = Some(peak.map_or(k, |p: u64| p.max(k)));
+        }
+        if let Some(status) = child.try_wait()? {
+            break Some(status.code().unwrap_or(-1));
+        }
+        if start.elapsed().as_secs_f64() >= limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            break None;
+        }
+        std::thread::sleep(nap);
+        nap = (nap * 2).min(Duration::from_millis(10));
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    Ok(Outcome {
+        code,
+        stdout: out.join().unwrap_or_default(),
+        stderr: err.join().unwrap_or_default(),
+        seconds,
+        peak_kib: peak,
+    })
+}
+
+fn last_line(s: &str) -> String {
+    s.lines()
+        .rev()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or("")
+        .trim()
+        .to_string()
+}
+
+/// The record names a method's child produces.
+fn record_methods(m: Method) -> Vec<&'static str> {
+    match m {
+        Method::Proof => vec!["proof", "el+ne+proof"],
+        _ => vec![m.name()],
+    }
+}
+
+struct Runner {
+    exe: PathBuf,
+    limit: f64,
+    min_seconds: f64,
+}
+
+impl Runner {
+    /// One (robot, method) measurement in a child process.
+    fn one(&self, spec: &RobotSpec, dof: usize, m: Method) -> Vec<Record> {
+        eprintln!("bench: {} {}", spec.name(), m.name());
+        let mut cmd = Command::new(&self.exe);
+        cmd.args([
+            "bench-one",
+            "--robot",
+            &spec.name(),
+            "--method",
+            m.name(),
+            "--min-seconds",
+            &self.min_seconds.to_string(),
+        ]);
+        let failed = |status: Status, note: String| {
+            record_methods(m)
+                .into_iter()
+                .map(|name| {
+                    let mut r = Record::new(&spec.name(), dof, name, status);
+                    r.note = note.clone();
+                    r
+                })
+                .collect()
+        };
+        match run_limited(cmd, self.limit) {
+            Err(e) => failed(Status::Error, format!("cannot start: {e}")),
+            Ok(o) if o.code.is_none() => {
+                let mut recs: Vec<Record> =
+                    failed(Status::Timeout, format!("killed after {} s", self.limit));
+                for r in &mut recs {
+                    r.peak_rss_kib = o.peak_kib;
+                }
+                recs
+            }
+            Ok(o) if o.code != Some(0) => failed(Status::Error, last_line(&o.stderr)),
+            Ok(o) => {
+                let recs: Result<Vec<Record>, _> = o
+                    .stdout
+                    .lines()
+                    .filter(|l| !l.trim().is_empty())
+                    .map(Record::from_json)
+                    .collect();
+                match recs {
+                    Ok(r) if !r.is_empty() => r,
+                    Ok(_) => failed(Status::Error, "no record printed".into()),
+                    Err(e) => failed(Status::Error, e.to_string()),
+                }
+            }
+        }
+    }
+
+    /// Median wall time of `runs` whole processes `symdyn ARGS`, output discarded.
+    fn end_to_end(&self, method: &str, args: &[&str], runs: usize) -> Record {
+        eprintln!("bench: end to end, symdyn {}", args.join(" "));
+        let mut rec = Record::new("ppp", 3, method, Status::Ok);
+        let mut times = Vec::with_capacity(runs);
+        for _ in 0..runs {
+            let start = Instant::now();
+            let status = Command::new(&self.exe)
+                .args(args)
+                .stdin(Stdio::null())
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .status();
+            let t = start.elapsed().as_secs_f64();
+            match status {
+                Ok(s) if s.success() => times.push(t),
+                Ok(s) => {
+                    rec.status = Status::Error;
+                    rec.note = format!("exit status {s}");
+                    return rec;
+                }
+                Err(e) => {
+                    rec.status = Status::Error;
+                    rec.note = format!("cannot start: {e}");
+                    return rec;
+                }
+            }
+        }
+        times.sort_by(f64::total_cmp);
+        rec.seconds = Some(times[times.len() / 2]);
+        rec.calls = Some(runs as u64);
+        rec.note = format!(
+            "min {}, max {}{}",
+            symdyn::bench::report::fmt_seconds(times[0]),
+            symdyn::bench::report::fmt_seconds(times[times.len() - 1]),
+            if cfg!(debug_assertions) {
+                "; debug build: not representative"
+            } else {
+                ""
+            }
+        );
+        rec
+    }
+}
+
+/// The peers' engines: (record method, `--engine`, `--trigsimp`).
+const PEER_RUNS: [(&str, &str, bool); 3] = [
+    ("sympy", "sympy", false),
+    ("sympy+trigsimp", "sympy", true),
+    ("symengine", "symengine", false),
+];
+
+/// Finds or makes the Python for the peers; `Err` says why there is none.
+fn peer_python(args: &BenchArgs) -> Result<PathBuf, String> {
+    if let Some(p) = &args.python {
+        return match Command::new(p).arg("--version").output() {
+            Ok(o) if o.status.success() => Ok(PathBuf::from(p)),
+            _ => Err(format!("the Python interpreter `{p}` does not run")),
+        };
+    }
+    let venv = PathBuf::from(&args.venv);
+    let py = venv.join("bin").join("python");
+    let ready = |py: &Path| {
+        Command::new(py)
+            .args(["-c", "import sympy, symengine"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    if ready(&py) {
+        return Ok(py);
+    }
+    if !py.exists() {
+        eprintln!("bench: creating the virtual environment {}", venv.display());
+        match Command::new("python3")
+            .args(["-m", "venv"])
+            .arg(&venv)
+            .status()
+        {
+            Ok(s) if s.success() => {}
+            Ok(s) => return Err(format!("`python3 -m venv` failed ({s})")),
+            Err(e) => return Err(format!("python3 was not found ({e})")),
+        }
+    }
+    eprintln!("bench: pip install sympy==1.14.0 symengine");
+    match Command::new(&py)
+        .args([
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--disable-pip-version-check",
+            "sympy==1.14.0",
+            "symengine",
+        ])
+        .status()
+    {
+        Ok(s) if s.success() && ready(&py) => Ok(py),
+        Ok(s) => Err(format!("pip install sympy==1.14.0 symengine failed ({s})")),
+        Err(e) => Err(format!("cannot run {}: {e}", py.display())),
+    }
+}
+
+/// Runs every peer on every robot; returns the records and notes.
+fn run_peers(
+    args: &BenchArgs,
+    limit: f64,
+    chains: usize,
+    notes: &mut Vec<String>,
+) -> Result<Vec<Record>, CliError> {
+    let script = PathBuf::from(&args.peer_script);
+    if !script.exists() {
+        let msg = format!(
+            "peers skipped: the peer script {} does not exist",
+            script.display()
+        );
+        eprintln!("bench: {msg}");
+        notes.push(msg);
+        return Ok(Vec::new());
+    }
+    let python = match peer_python(args) {
+        Ok(p) => p,
+        Err(why) => {
+            let msg = format!("peers skipped: {why}");
+            eprintln!("bench: {msg}");
+            notes.push(msg);
+            return Ok(Vec::new());
+        }
+    };
+    let dir = std::env::temp_dir().join(format!("symdyn-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(io_err(&dir))?;
+    let mut robots = vec![RobotSpec::Example("puma560_symbolic")];
+    robots.extend((1..=chains).map(RobotSpec::Chain));
+    let mut timed_out: HashSet<&str> = HashSet::new();
+    let mut records = Vec::new();
+    for spec in &robots {
+        let robot = spec
+            .robot()
+            .map_err(|e| CliError::Input(format!("error: {e}")))?;
+        let path = dir.join(format!("{}.json", spec.name()));
+        std::fs::write(&path, robot_json(&robot)).map_err(io_err(&path))?;
+        let is_chain = matches!(spec, RobotSpec::Chain(_));
+        for (method, engine, trigsimp) in PEER_RUNS {
+            let mut rec = Record::new(&spec.name(), robot.dof(), method, Status::Ok);
+            if is_chain && timed_out.contains(method) {
+                rec.status = Status::Skipped;
+                rec.note = "a smaller chain timed out".into();
+                records.push(rec);
+                continue;
+            }
+            eprintln!("bench: peer {method} on {}", spec.name());
+            let mut cmd = Command::new(&python);
+            cmd.arg(&script).args(["--engine", engine]);
+            if trigsimp {
+                cmd.arg("--trigsimp");
+            }
+            cmd.arg(&path);
+            match run_limited(cmd, limit) {
+                Err(e) => {
+                    rec.status = Status::Error;
+                    rec.note = format!("cannot start: {e}");
+                }
+                Ok(o) => {
+                    rec.peak_rss_kib = o.peak_kib;
+                    if o.code.is_none() {
+                        rec.status = Status::Timeout;
+                        rec.note = format!("killed after {limit} s");
+                        if is_chain {
+                            timed_out.insert(method);
+                        }
+                    } else {
+                        match parse_peer_answer(&o.stdout) {
+                            Ok(a) if a.status == "ok" && o.code == Some(0) => {
+                                rec.seconds = a.seconds;
+                                rec.ops = a.ops;
+                                rec.terms = a.terms;
+                                rec.note = format!("process {:.2} s", o.seconds);
+                            }
+                            Ok(a) => {
+                                rec.status = Status::Error;
+                                rec.note =
+                                    format!("peer status {}; {}", a.status, last_line(&o.stderr));
+                            }
+                            Err(e) => {
+                                rec.status = Status::Error;
+                                rec.note = format!("{e}; {}", last_line(&o.stderr));
+                            }
+                        }
+                    }
+                }
+            }
+            records.push(rec);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    Ok(records)
+}
+
+// ───────────────────────────────────────────────────────────────────────────────────────────────
+// LEAD: connect `symdyn::numeric::accuracy::chart` here, when branch `fail` is merged. This is the
+// only place the speed–accuracy chart gets its data; replace the body with the code below (checked:
+// it compiles and draws against fail's commit a71c624):
+//
+//     let (states, seed, min_seconds) = if quick { (20, 1, 0.02) } else { (200, 1, 0.2) };
+//     match symdyn::numeric::accuracy::chart(states, seed, min_seconds) {
+//         Ok(points) => (
+//             points
+//                 .into_iter()
+//                 .map(|p| Point {
+//                     // Finite differences: one series per robot, each point labelled by its step.
+//                     label: match p.step {
+//                         Some(h) => format!("h={h:.0e}"),
+//                         None => p.robot.clone(),
+//                     },
+//                     group: match p.step {
+//                         Some(_) => format!("{}, {}", p.method, p.robot),
+//                         None => p.method,
+//                     },
+//                     x: p.seconds_per_eval,
+//                     y: p.max_rel_error, // exact 0 is placed at chart::ZERO_ERROR_FLOOR, with a note
+//                 })
+//                 .collect(),
+//             None,
+//         ),
+//         Err(e) => (Vec::new(), Some(format!("accuracy data failed: {e}"))),
+//     }
+// ───────────────────────────────────────────────────────────────────────────────────────────────
+/// The speed–accuracy points, and a note when there are none.
+fn accuracy_points(quick: bool) -> (Vec<Point>, Option<String>) {
+    let _ = quick;
+    (
+        Vec::new(),
+        Some("speed–accuracy data not connected yet (numeric::accuracy)".into()),
+    )
+}
+
+/// The scaling chart's points: chains only, finished measurements.
+fn scaling_points(records: &[Record]) -> (Vec<Point>, Vec<String>) {
+    let series = [
+        ("el", "Euler–Lagrange"),
+        ("ne", "Newton–Euler"),
+        ("proof", "proof"),
+        ("sympy", "SymPy"),
+        ("sympy+trigsimp", "SymPy + trigsimp"),
+        ("symengine", "SymEngine"),
+    ];
+    let mut points = Vec::new();
+    let mut notes = Vec::new();
+    for (method, group) in series {
+        for r in records
+            .iter()
+            .filter(|r| r.method == method && r.robot.starts_with("chain-"))
+        {
+            match (r.status, r.seconds) {
+                (Status::Ok, Some(s)) => points.push(Point {
+                    label: String::new(),
+                    group: group.to_string(),
+                    x: r.dof as f64,
+                    y: s,
+                }),
+                (Status::Timeout, _) => notes.push(format!("{group}: timeout at n = {}", r.dof)),
+                _ => {}
+            }
+        }
+    }
+    (points, notes)
+}
+
+/// Loads a TrueType font for the PNG charts: `SYMDYN_FONT`, else a common system font.
+fn load_font() -> Option<String> {
+    let mut candidates: Vec<String> = std::env::var("SYMDYN_FONT").into_iter().collect();
+    candidates.extend(
+        [
+            "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+            "/usr/share/fonts/TTF/DejaVuSans.ttf",
+            "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+            "/usr/share/fonts/dejavu-sans-fonts/DejaVuSans.ttf",
+            "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
+            "/usr/share/fonts/liberation/LiberationSans-Regular.ttf",
+            "/usr/share/fonts/truetype/freefont/FreeSans.ttf",
+            "/usr/share/fonts/noto/NotoSans-Regular.ttf",
+            "/usr/share/fonts/truetype/noto/NotoSans-Regular.ttf",
+            "/Library/Fonts/Arial.ttf",
+            "/System/Library/Fonts/Supplemental/Arial.ttf",
+            "C:\\Windows\\Fonts\\arial.ttf",
+        ]
+        .map(String::from),
+    );
+    for path in candidates {
+        if let Ok(bytes) = std::fs::read(&path) {
+            if chart::register_font(Box::leak(bytes.into_boxed_slice())).is_ok() {
+                return Some(path);
+            }
+        }
+    }
+    None
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    std::fs::write(path, bytes).map_err(io_err(path))
+}
+
+/// Writes a chart as SVG (always) and PNG (when a font is available); returns a note on failure.
+fn write_chart(
+    dir: &Path,
+    stem: &str,
+    spec: &chart::ChartSpec,
+) -> Result<Option<String>, CliError> {
+    let svg = chart::svg(spec).map_err(|e| CliError::Input(format!("error: {e}")))?;
+    write(&dir.join(format!("{stem}.svg")), svg.as_bytes())?;
+    match chart::png(spec) {
+        Ok(bytes) => {
+            write(&dir.join(format!("{stem}.png")), &bytes)?;
+            Ok(None)
+        }
+        Err(e) => {
+            let msg = format!("{stem}.png not written: {e}");
+            eprintln!("bench: {msg}");
+            Ok(Some(msg))
+        }
+    }
+}
+
+fn machine(command: String) -> Machine {
+    let read = |p: &str| std::fs::read_to_string(p).unwrap_or_default();
+    let cpuinfo = read("/proc/cpuinfo");
+    let cpu = cpuinfo
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("model name")
+                .map(|v| v.trim_start_matches([' ', '\t', ':']))
+        })
+        .unwrap_or("unknown")
+        .to_string();
+    let cores = std::thread::available_parallelism()
+        .map(|n| n.to_string())
+        .unwrap_or_else(|_| "unknown".into());
+    let memory = read("/proc/meminfo")
+        .lines()
+        .find_map(|l| l.strip_prefix("MemTotal:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+        .map(|kb| format!("{:.1} GiB", kb / 1024.0 / 1024.0))
+        .unwrap_or_else(|| "unknown".into());
+    let os_name = read("/etc/os-release")
+        .lines()
+        .find_map(|l| l.strip_prefix("PRETTY_NAME="))
+        .map(|v| v.trim_matches('"').to_string())
+        .unwrap_or_else(|| std::env::consts::OS.to_string());
+    let kernel = read("/proc/sys/kernel/osrelease").trim().to_string();
+    let os = if kernel.is_empty() {
+        os_name
+    } else {
+        format!("{os_name}, kernel {kernel}")
+    };
+    let rustc = Command::new("rustc")
+        .arg("--version")
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_else(|| "unknown (rustc not on PATH)".into());
+    Machine {
+        cpu,
+        cores,
+        memory,
+        os,
+        rustc,
+        date: utc_now(),
+        command,
+        build: if cfg!(debug_assertions) {
+            "debug (timings not representative)".into()
+        } else {
+            "release".into()
+        },
+    }
+}
+
+/// The current UTC time as `YYYY-MM-DD HH:MM UTC`.
+fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs() as i64)
+        .unwrap_or(0);
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02} {:02}:{:02} UTC",
+        rem / 3600,
+        rem % 3600 / 60
+    )
+}
+
+fn shell_quote(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./=,:+".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// `symdyn bench`.
+pub fn bench(args: BenchArgs) -> Result<String, CliError> {
+    let limit = args.timeout.unwrap_or(if args.quick { 10.0 } else { 60.0 });
+    if !(limit > 0.0 && limit.is_finite()) {
+        return Err(CliError::Input(format!(
+            "error: --timeout must be a positive number of seconds, not {limit}"
+        )));
+    }
+    let chains = args.max_joints.unwrap_or(if args.quick { 6 } else { 12 });
+    if chains > 64 {
+        return Err(CliError::Input("error: --max-joints is at most 64".into()));
+    }
+    let examples: Vec<RobotSpec> = match args.examples.as_deref() {
+        None => RobotSpec::examples(),
+        Some("none") | Some("") => Vec::new(),
+        Some(list) => list
+            .split(',')
+            .map(|s| {
+                RobotSpec::parse(s.trim())
+                    .ok()
+                    .filter(|r| matches!(r, RobotSpec::Example(_)))
+                    .ok_or_else(|| CliError::Input(format!("error: unknown example scene `{s}`")))
+            })
+            .collect::<Result<_, _>>()?,
+    };
+    let exe = std::env::current_exe().map_err(|source| CliError::Io {
+        path: "the symdyn executable".into(),
+        source,
+    })?;
+    let out = PathBuf::from(&args.out);
+    std::fs::create_dir_all(&out).map_err(io_err(&out))?;
+    let command = std::iter::once("symdyn".to_string())
+        .chain(std::env::args().skip(1).map(|a| shell_quote(&a)))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let runner = Runner {
+        exe,
+        limit,
+        min_seconds: if args.quick { 0.05 } else { 0.5 },
+    };
+    let mut notes = Vec::new();
+    if cfg!(debug_assertions) {
+        notes.push(
+            "debug build: timings are not representative (use `cargo run --release -- bench`)"
+                .to_string(),
+        );
+    }
+    notes.push(format!(
+        "time limit {limit} s per process; chains n = 1..{chains}"
+    ));
+
+    let mut records = Vec::new();
+    for spec in &examples {
+        let dof = spec
+            .robot()
+            .map_err(|e| CliError::Input(format!("error: {e}")))?
+            .dof();
+        for m in Method::ALL {
+            records.extend(runner.one(spec, dof, m));
+        }
+    }
+    let mut timed_out: HashSet<Method> = HashSet::new();
+    for n in 1..=chains {
+        let spec = RobotSpec::Chain(n);
+        for m in Method::ALL {
+            // Evaluations need Euler–Lagrange; the proof needs both derivations.
+            let blocked = match m {
+                Method::EvalTau | Method::EvalD => {
+                    timed_out.contains(&m) || timed_out.contains(&Method::Lagrange)
+                }
+                Method::Proof => {
+                    timed_out.contains(&m)
+                        || timed_out.contains(&Method::Lagrange)
+                        || timed_out.contains(&Method::NewtonEuler)
+                }
+                _ => timed_out.contains(&m),
+            };
+            if blocked {
+                for name in record_methods(m) {
+                    let mut r = Record::new(&spec.name(), n, name, Status::Skipped);
+                    r.note = "a smaller chain timed out".into();
+                    records.push(r);
+                }
+                continue;
+            }
+            let recs = runner.one(&spec, n, m);
+            if recs.iter().any(|r| r.status == Status::Timeout) {
+                timed_out.insert(m);
+            }
+            records.extend(recs);
+        }
+    }
+    let spawns = if args.quick { 10 } else { 30 };
+    records.push(runner.end_to_end("e2e-sheet", &["sheet"], spawns));
+    records.push(runner.end_to_end("e2e-check", &["check"], spawns));
+    if args.peers {
+        records.extend(run_peers(&args, limit, chains, &mut notes)?);
+    }
+
+    match load_font() {
+        Some(path) => eprintln!("bench: PNG text in {path}"),
+        None => eprintln!("bench: no TrueType font found; PNG charts are skipped"),
+    }
+    let (acc, acc_note) = accuracy_points(args.quick);
+    let mut acc_spec = chart::speed_accuracy(acc);
+    acc_spec.notes.extend(acc_note);
+    let (pts, chart_notes) = scaling_points(&records);
+    let scale_spec = chart::scaling(pts, chart_notes);
+    for (stem, spec) in [("speed_accuracy", &acc_spec), ("scaling", &scale_spec)] {
+        if let Some(n) = write_chart(&out, stem, spec)? {
+            notes.push(n);
+        }
+    }
+    let csv = out.join("results.csv");
+    write(&csv, to_csv(&records).as_bytes())?;
+    let md = out.join("benchmarks.md");
+    write(
+        &md,
+        markdown(&machine(command), &records, &notes).as_bytes(),
+    )?;
+    let ok = records.iter().filter(|r| r.status == Status::Ok).count();
+    Ok(format!(
+        "{} measurements ({ok} ok) written to {} and {}; charts in {}\n",
+        records.len(),
+        csv.display(),
+        md.display(),
+        out.display()
+    ))
+}
