@@ -136,6 +136,7 @@ fn quick_bench_writes_consistent_results() {
             "proof",
             "el+ne+proof",
             "eval-tau",
+            "eval-tau-program",
             "eval-d",
             "eval-ne-numeric",
         ] {

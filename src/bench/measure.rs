@@ -13,7 +13,7 @@ use super::BenchError;
 use crate::algebra::Symbol;
 use crate::dynamics::check::check;
 use crate::dynamics::{numeric as ne_numeric, Derivation, Frame, Robot};
-use crate::numeric::{compile, robot_parameters};
+use crate::numeric::{compile, compile_tau, robot_parameters};
 use std::collections::HashMap;
 use std::hint::black_box;
 use std::time::Instant;
@@ -29,6 +29,9 @@ pub enum Method {
     Proof,
     /// One call of the compiled τ(q, q̇, q̈).
     EvalTau,
+    /// One call of the τ program traced from Newton–Euler with the parameters folded in
+    /// ([`crate::numeric::compile_tau`]).
+    EvalTauProgram,
     /// One call of the compiled D(q).
     EvalD,
     /// One call of the nalgebra Newton–Euler.
@@ -37,11 +40,12 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order the runner measures them.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Lagrange,
         Method::NewtonEuler,
         Method::Proof,
         Method::EvalTau,
+        Method::EvalTauProgram,
         Method::EvalD,
         Method::EvalNeNumeric,
     ];
@@ -53,6 +57,7 @@ impl Method {
             Method::NewtonEuler => "ne",
             Method::Proof => "proof",
             Method::EvalTau => "eval-tau",
+            Method::EvalTauProgram => "eval-tau-program",
             Method::EvalD => "eval-d",
             Method::EvalNeNumeric => "eval-ne-numeric",
         }
@@ -255,6 +260,23 @@ pub fn measure(
                 "tape: {body} instructions per call, {setup} at bind; {} output{}",
                 polys.len(),
                 if polys.len() == 1 { "" } else { "s" }
+            );
+            Ok(vec![r])
+        }
+        Method::EvalTauProgram => {
+            let der = derivation(spec, robot)?;
+            let params = random_parameters(der.robot(), &mut rng);
+            let mut program = compile_tau(&der, &params).map_err(|e| numeric_err(&e))?;
+            let st = states(n, &mut rng);
+            let (secs, calls) = per_call(&st, min_seconds, |s| {
+                Ok::<f64, crate::numeric::NumericError>(program.eval(&s.q, &s.qd, &s.qdd)?[0])
+            })
+            .map_err(|e| numeric_err(&e))?;
+            let mut r = ok(method.name(), secs);
+            r.calls = Some(calls);
+            r.note = format!(
+                "program: {} instructions per call",
+                program.instruction_count()
             );
             Ok(vec![r])
         }

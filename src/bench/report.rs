@@ -2,6 +2,7 @@
 //! peers' ratios computed pair by pair from the same run.
 
 use super::record::{Record, Status};
+use crate::numeric::accuracy::AccuracyPoint;
 
 /// The machine and the run, as the runner found them.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -192,22 +193,26 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         ));
     }
 
-    let evals = ["eval-tau", "eval-d", "eval-ne-numeric"];
+    let evals = ["eval-tau", "eval-tau-program", "eval-d", "eval-ne-numeric"];
     let eval_robots = robots_in(records, &evals);
     if !eval_robots.is_empty() {
         s.push_str("\n## Numeric evaluation\n\nMean time per call over random states, parameters bound to random values: ");
         s.push_str("τ(q, q̇, q̈) and D(q) from the derived expressions (`numeric::compile`, `Tape::bind`, `Evaluator::eval`), ");
+        s.push_str("τ from the straight-line program traced once from Newton–Euler with the parameters folded in (`numeric::compile_tau`), ");
         s.push_str("and the independent nalgebra Newton–Euler (`dynamics::numeric::inverse_dynamics`, which evaluates the ");
         s.push_str("scene's expressions on every call).\n\n");
-        s.push_str("| robot | n | τ (tape) | D (tape) | nalgebra Newton–Euler | τ tape |\n| --- | --- | --- | --- | --- | --- |\n");
+        s.push_str("| robot | n | τ (tape) | τ (program) | D (tape) | nalgebra Newton–Euler | τ tape | τ program |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n");
         for (robot, n) in eval_robots {
             let tau = find(records, &robot, "eval-tau");
+            let program = find(records, &robot, "eval-tau-program");
             s.push_str(&format!(
-                "| {robot} | {n} | {} | {} | {} | {} |\n",
+                "| {robot} | {n} | {} | {} | {} | {} | {} | {} |\n",
                 cell(tau),
+                cell(program),
                 cell(find(records, &robot, "eval-d")),
                 cell(find(records, &robot, "eval-ne-numeric")),
                 tau.map(|r| r.note.as_str()).unwrap_or("–"),
+                program.map(|r| r.note.as_str()).unwrap_or("–"),
             ));
         }
     }
@@ -271,6 +276,55 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
     s
 }
 
+/// The speed-against-accuracy section of `benchmarks.md`: one row per method and robot (finite
+/// differences: one row per step), time per evaluation of the full τ and the largest relative error
+/// against the exact rational value ([`crate::numeric::accuracy`]).
+pub fn accuracy_markdown(points: &[AccuracyPoint]) -> String {
+    let mut s = String::from("\n## Speed against accuracy\n\n");
+    s.push_str("τ(q, q̇, q̈) of the PUMA 560 and the Stanford arm at random exact states (`numeric::accuracy`): ");
+    s.push_str("time per evaluation of the whole vector and the largest componentwise relative error against the ");
+    s.push_str("exact rational τ. `exact` is the reference; `program` the straight-line program traced from ");
+    s.push_str(
+        "Newton–Euler; `tape` and `nested` the derived expanded τ, compiled and in Horner form; ",
+    );
+    s.push_str("`newton-euler` the nalgebra recursion; `fd-lagrange` finite differences of L = K − P with step h ");
+    s.push_str("(see `docs/failure-modes.md`). The raw points are in `accuracy.csv`; the chart is `speed_accuracy.svg`.\n\n");
+    s.push_str("| robot | method | step h | time per τ | max relative error |\n| --- | --- | --- | --- | --- |\n");
+    for p in points {
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {} |\n",
+            p.robot,
+            p.method,
+            p.step
+                .map(|h| format!("{h:.0e}"))
+                .unwrap_or_else(|| "–".into()),
+            fmt_seconds(p.seconds_per_eval),
+            if p.max_rel_error == 0.0 {
+                "0 (exact)".to_string()
+            } else {
+                format!("{:.1e}", p.max_rel_error)
+            }
+        ));
+    }
+    s
+}
+
+/// The speed-against-accuracy points as CSV: `robot,method,step,seconds_per_eval,max_rel_error`.
+pub fn accuracy_csv(points: &[AccuracyPoint]) -> String {
+    let mut s = String::from("robot,method,step,seconds_per_eval,max_rel_error\n");
+    for p in points {
+        s.push_str(&format!(
+            "{},{},{},{:e},{:e}\n",
+            p.robot,
+            p.method,
+            p.step.map(|h| format!("{h:e}")).unwrap_or_default(),
+            p.seconds_per_eval,
+            p.max_rel_error
+        ));
+    }
+    s
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -309,5 +363,32 @@ mod tests {
         assert_eq!(fmt_ratio(6.66), "6.7");
         assert_eq!(fmt_ratio(0.027), "0.027");
         assert_eq!(fmt_ratio(0.5), "0.50");
+    }
+
+    #[test]
+    fn accuracy_rows_mark_the_exact_reference_and_the_steps() {
+        let p = |method: &str, step: Option<f64>, err: f64| AccuracyPoint {
+            method: method.into(),
+            robot: "puma560".into(),
+            step,
+            seconds_per_eval: 2e-6,
+            max_rel_error: err,
+        };
+        let pts = [p("exact", None, 0.0), p("fd-lagrange", Some(1e-3), 4.5e-5)];
+        let md = accuracy_markdown(&pts);
+        assert!(
+            md.contains("| puma560 | exact | – | 2.000 µs | 0 (exact) |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| puma560 | fd-lagrange | 1e-3 | 2.000 µs | 4.5e-5 |"),
+            "{md}"
+        );
+        let csv = accuracy_csv(&pts);
+        assert_eq!(csv.lines().count(), 3);
+        assert_eq!(
+            csv.lines().nth(2),
+            Some("puma560,fd-lagrange,1e-3,2e-6,4.5e-5")
+        );
     }
 }

@@ -19,8 +19,9 @@ use std::time::{Duration, Instant};
 use symdyn::bench::chart::{self, Point};
 use symdyn::bench::peer::{parse_peer_answer, robot_json};
 use symdyn::bench::record::{to_csv, Record, Status};
-use symdyn::bench::report::{markdown, Machine};
+use symdyn::bench::report::{accuracy_csv, accuracy_markdown, markdown, Machine};
 use symdyn::bench::{measure, Method, RobotSpec};
+use symdyn::numeric::accuracy::AccuracyPoint;
 
 /// The options of `symdyn bench`.
 #[derive(Clone, Debug)]
@@ -417,42 +418,30 @@ fn run_peers(
     Ok(records)
 }
 
-// ───────────────────────────────────────────────────────────────────────────────────────────────
-// LEAD: connect `symdyn::numeric::accuracy::chart` here, when branch `fail` is merged. This is the
-// only place the speed–accuracy chart gets its data; replace the body with the code below (checked:
-// it compiles and draws against fail's commit a71c624):
-//
-//     let (states, seed, min_seconds) = if quick { (20, 1, 0.02) } else { (200, 1, 0.2) };
-//     match symdyn::numeric::accuracy::chart(states, seed, min_seconds) {
-//         Ok(points) => (
-//             points
-//                 .into_iter()
-//                 .map(|p| Point {
-//                     // Finite differences: one series per robot, each point labelled by its step.
-//                     label: match p.step {
-//                         Some(h) => format!("h={h:.0e}"),
-//                         None => p.robot.clone(),
-//                     },
-//                     group: match p.step {
-//                         Some(_) => format!("{}, {}", p.method, p.robot),
-//                         None => p.method,
-//                     },
-//                     x: p.seconds_per_eval,
-//                     y: p.max_rel_error, // exact 0 is placed at chart::ZERO_ERROR_FLOOR, with a note
-//                 })
-//                 .collect(),
-//             None,
-//         ),
-//         Err(e) => (Vec::new(), Some(format!("accuracy data failed: {e}"))),
-//     }
-// ───────────────────────────────────────────────────────────────────────────────────────────────
-/// The speed–accuracy points, and a note when there are none.
-fn accuracy_points(quick: bool) -> (Vec<Point>, Option<String>) {
-    let _ = quick;
-    (
-        Vec::new(),
-        Some("speed–accuracy data not connected yet (numeric::accuracy)".into()),
-    )
+/// The speed–accuracy data ([`symdyn::numeric::accuracy::chart`]), or why there is none.
+fn accuracy_data(quick: bool) -> Result<Vec<AccuracyPoint>, String> {
+    let (states, seed, min_seconds) = if quick { (20, 1, 0.02) } else { (200, 1, 0.2) };
+    symdyn::numeric::accuracy::chart(states, seed, min_seconds)
+        .map_err(|e| format!("accuracy data failed: {e}"))
+}
+
+/// The speed–accuracy chart's points: finite differences form one series per robot, each point
+/// labelled by its step; an exact 0 error is placed at `chart::ZERO_ERROR_FLOOR`, with a note.
+fn accuracy_points(data: &[AccuracyPoint]) -> Vec<Point> {
+    data.iter()
+        .map(|p| Point {
+            label: match p.step {
+                Some(h) => format!("h={h:.0e}"),
+                None => p.robot.clone(),
+            },
+            group: match p.step {
+                Some(_) => format!("{}, {}", p.method, p.robot),
+                None => p.method.clone(),
+            },
+            x: p.seconds_per_eval,
+            y: p.max_rel_error,
+        })
+        .collect()
 }
 
 /// The scaling chart's points: chains only, finished measurements.
@@ -701,6 +690,9 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
                 Method::EvalTau | Method::EvalD => {
                     timed_out.contains(&m) || timed_out.contains(&Method::Lagrange)
                 }
+                Method::EvalTauProgram => {
+                    timed_out.contains(&m) || timed_out.contains(&Method::NewtonEuler)
+                }
                 Method::Proof => {
                     timed_out.contains(&m)
                         || timed_out.contains(&Method::Lagrange)
@@ -734,9 +726,10 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         Some(path) => eprintln!("bench: PNG text in {path}"),
         None => eprintln!("bench: no TrueType font found; PNG charts are skipped"),
     }
-    let (acc, acc_note) = accuracy_points(args.quick);
-    let mut acc_spec = chart::speed_accuracy(acc);
-    acc_spec.notes.extend(acc_note);
+    let acc = accuracy_data(args.quick);
+    let mut acc_spec =
+        chart::speed_accuracy(acc.as_deref().map(accuracy_points).unwrap_or_default());
+    acc_spec.notes.extend(acc.as_ref().err().cloned());
     let (pts, chart_notes) = scaling_points(&records);
     let scale_spec = chart::scaling(pts, chart_notes);
     for (stem, spec) in [("speed_accuracy", &acc_spec), ("scaling", &scale_spec)] {
@@ -747,10 +740,12 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     let csv = out.join("results.csv");
     write(&csv, to_csv(&records).as_bytes())?;
     let md = out.join("benchmarks.md");
-    write(
-        &md,
-        markdown(&machine(command), &records, &notes).as_bytes(),
-    )?;
+    let mut text = markdown(&machine(command), &records, &notes);
+    if let Ok(points) = &acc {
+        text.push_str(&accuracy_markdown(points));
+        write(&out.join("accuracy.csv"), accuracy_csv(points).as_bytes())?;
+    }
+    write(&md, text.as_bytes())?;
     let ok = records.iter().filter(|r| r.status == Status::Ok).count();
     Ok(format!(
         "{} measurements ({ok} ok) written to {} and {}; charts in {}\n",

@@ -4,6 +4,8 @@
 //! Methods ([`AccuracyPoint::method`]):
 //! - `tape`: the derived symbolic `τ` (Euler–Lagrange, expanded normal form) compiled to the `f64`
 //!   instruction tape ([`crate::numeric::compile`]);
+//! - `program`: the straight-line program of the Newton–Euler recursion traced once for this robot
+//!   with its parameter values folded in ([`crate::numeric::compile_tau`]), the fastest path;
 //! - `nested`: the same polynomials in nested multivariate Horner form ([`nested::Nested`]);
 //! - `newton-euler`: the independent numeric Newton–Euler in `f64`
 //!   ([`crate::dynamics::numeric::inverse_dynamics`], which evaluates the scene's expressions on every
@@ -24,7 +26,7 @@ pub mod rational;
 pub mod robots;
 
 use super::fd::FdLagrangian;
-use super::{compile, NumericError};
+use super::{compile, compile_tau, NumericError};
 use crate::algebra::Rational;
 use crate::dynamics::numeric::{inverse_dynamics, NumericError as NeError};
 use nested::Nested;
@@ -37,7 +39,7 @@ pub const TINY: f64 = f64::MIN_POSITIVE;
 /// One point of the speed-versus-accuracy chart.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AccuracyPoint {
-    /// `tape`, `nested`, `newton-euler`, `fd-lagrange` or `exact`.
+    /// `tape`, `program`, `nested`, `newton-euler`, `fd-lagrange` or `exact`.
     pub method: String,
     /// `puma560` or `stanford`.
     pub robot: String,
@@ -138,6 +140,12 @@ pub fn robot_points(
         Ok(tape.eval(&s.q, &s.qd, &s.qdd)?.to_vec())
     })?;
     out.push(point("tape", None, secs, max_rel_error(&vals, &exact)));
+
+    let mut program = compile_tau(&bench.derivation, &params)?;
+    let (secs, vals) = timed(&states, min_seconds, |s| {
+        Ok(program.eval(&s.q, &s.qd, &s.qdd)?.to_vec())
+    })?;
+    out.push(point("program", None, secs, max_rel_error(&vals, &exact)));
 
     let mut nested = Nested::new(tau, n, &params)?;
     let (secs, vals) = timed(&states, min_seconds, |s| {
