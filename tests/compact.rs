@@ -242,3 +242,103 @@ fn names_avoid_the_scene_symbols() {
     assert!(names.contains(&"w2_1_") || names.contains(&"f2_1_"));
     assert_exact(robot, "clash");
 }
+
+fn symdyn(args: &[&str]) -> (String, String, i32) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs");
+    (
+        String::from_utf8(out.stdout).expect("utf-8"),
+        String::from_utf8(out.stderr).expect("utf-8"),
+        out.status.code().unwrap_or(-1),
+    )
+}
+
+#[test]
+fn cli_compact_needs_newton_euler_in_body_frames() {
+    for args in [
+        vec!["derive", "--compact"],
+        vec!["derive", "--compact", "--method", "lagrange"],
+        vec![
+            "derive",
+            "--compact",
+            "--method",
+            "newton-euler",
+            "--frame",
+            "inertial",
+        ],
+    ] {
+        let (out, err, code) = symdyn(&args);
+        assert_eq!((code, out.as_str()), (1, ""), "{args:?}");
+        assert!(err.contains("--compact"), "{args:?}: {err}");
+    }
+}
+
+/// The ASCII program read back by the expression parser and expanded is the Newton–Euler τ.
+#[test]
+fn cli_ascii_program_reads_back_to_the_newton_euler_tau() {
+    use symdyn::algebra::to_poly;
+    use symdyn::parse::parse_expr;
+    for name in ["elbow", "stanford"] {
+        let path = format!("examples/{name}.scene");
+        let (out, err, code) = symdyn(&[
+            "derive",
+            "--method",
+            "newton-euler",
+            "--compact",
+            "--ascii",
+            &path,
+        ]);
+        assert_eq!((code, err.as_str()), (0, ""), "{name}");
+        let robot = example(name);
+        let mut program = CompactProgram {
+            intermediates: Vec::new(),
+            tau: Vec::new(),
+        };
+        for line in out.lines() {
+            let (lhs, rhs) = line.split_once(" = ").expect("name = value");
+            let value = to_poly(&parse_expr(rhs).expect("ASCII reads back"));
+            if robot.inputs.iter().any(|u| u == lhs) {
+                program.tau.push(value);
+            } else {
+                program
+                    .intermediates
+                    .push(symdyn::dynamics::ne_compact::Intermediate {
+                        symbol: Symbol::new(lhs),
+                        value,
+                    });
+            }
+        }
+        let der = Derivation::new(robot).expect("valid robot");
+        let tau = &der.newton_euler(Frame::Body).tau;
+        let expanded = program.expand();
+        assert_eq!(expanded.len(), tau.len(), "{name}");
+        for (a, b) in expanded.iter().zip(tau) {
+            assert!(a.sub(b).is_zero(), "{name}");
+        }
+    }
+}
+
+#[test]
+fn cli_json_lists_the_program() {
+    let (out, err, code) = symdyn(&[
+        "derive",
+        "--method",
+        "newton-euler",
+        "--compact",
+        "--format",
+        "json",
+        "examples/puma560_symbolic.scene",
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let program = CompactProgram::derive(&example("puma560_symbolic")).expect("valid robot");
+    assert_eq!(
+        doc["intermediates"].as_array().map(Vec::len),
+        Some(program.intermediates.len())
+    );
+    assert_eq!(doc["tau"].as_array().map(Vec::len), Some(6));
+    assert_eq!(doc["ops"]["mul"], program.op_count().mul);
+}

@@ -38,7 +38,8 @@
 //!   moments before the first revolute joint) vanish from the program.
 //! - Names are hash-consed by canonical form: a value equal to an earlier one (or to its negative)
 //!   reuses that name.
-//! - A name that a scene symbol already uses gets a trailing `_`.
+//! - A name that a scene symbol or input already uses gets a trailing `_`.
+//! - Lines that no `τ_k` needs (the moment of link 1 about its x and y axes, …) are dropped at the end.
 //!
 //! Substituting the names back gives exactly `Derivation::newton_euler(Frame::Body).tau`
 //! ([`CompactProgram::expand`]; the tests prove it with the exact zero test).
@@ -151,6 +152,7 @@ impl Builder {
                 t.iter().flatten().for_each(&mut note);
             }
         }
+        taken.extend(robot.inputs.iter().cloned());
         Builder {
             lines: Vec::new(),
             index: HashMap::new(),
@@ -402,7 +404,7 @@ impl CompactProgram {
             f_next = fi;
         }
         Ok(CompactProgram {
-            intermediates: b.lines,
+            intermediates: live(b.lines, &tau),
             tau,
         })
     }
@@ -441,6 +443,24 @@ impl CompactProgram {
                 .chain(self.tau.iter()),
         )
     }
+}
+
+/// The lines that `τ` needs, directly or through later lines, in their order (the moments of link 1
+/// about its other axes, for one, serve no `τ`).
+fn live(lines: Vec<Intermediate>, tau: &[Poly]) -> Vec<Intermediate> {
+    let mut needed: HashSet<AtomId> = tau.iter().flat_map(Poly::atoms).collect();
+    let mut keep = vec![false; lines.len()];
+    for (k, line) in lines.iter().enumerate().rev() {
+        if needed.contains(&crate::algebra::atom::sym(&line.symbol)) {
+            keep[k] = true;
+            needed.extend(line.value.atoms());
+        }
+    }
+    lines
+        .into_iter()
+        .zip(keep)
+        .filter_map(|(l, k)| k.then_some(l))
+        .collect()
 }
 
 /// `p` with the atoms of `map` replaced by their polynomials (exponents of mapped atoms are positive,
