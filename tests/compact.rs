@@ -208,7 +208,7 @@ fn structural_zeros_leave_no_trace() {
     for line in &program.intermediates {
         let name = line.symbol.param_name().expect("a parameter");
         assert!(
-            !["w", "wd", "u", "jw", "n"]
+            !["w", "wd", "U", "jw", "n"]
                 .iter()
                 .any(|p| name.starts_with(p)
                     && name[p.len()..].starts_with(|c: char| c.is_ascii_digit())),

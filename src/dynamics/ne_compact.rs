@@ -19,7 +19,7 @@
 //! |---------------|-------------------------------------------------------------------------------|
 //! | `w{i}_{k}`    | `ω_i`                                                                         |
 //! | `wd{i}_{k}`   | `α_i = ω̇_i`                                                                   |
-//! | `u{i}_{rc}`   | `U_i = S(α_i) + S(ω_i)²`, so that `α × r + ω × (ω × r) = U r`                 |
+//! | `U{i}_{rc}`   | `U_i = S(α_i) + S(ω_i)²`, so that `α × r + ω × (ω × r) = U r`                 |
 //! | `aj{i}_{k}`   | the acceleration where joint `i` acts, less `g_i` (with `2 ω × b ḋ + b d̈`)    |
 //! | `ae{i}_{k}`   | `a_e,i − g_i` (only for `i < n`)                                              |
 //! | `ac{i}_{k}`   | `a_c,i − g_i`                                                                 |
@@ -341,7 +341,7 @@ impl CompactProgram {
             }
             let aj = b.vec(aj, &format!("aj{i}"));
             let s2 = skew(&w);
-            let u = b.mat(mat_add(&skew(&wd), &s2.mul(&s2)), &format!("u{i}"));
+            let u = b.mat(mat_add(&skew(&wd), &s2.mul(&s2)), &format!("U{i}"));
             let link = &robot.links[idx];
             let r_jo = rt.mul_vec(&jf.origin.sub(&jf.joint_point));
             let r_jc = r_jo.add(&vec_of(&link.com));
