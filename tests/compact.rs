@@ -2,7 +2,10 @@
 //! the expanded body-frame Newton–Euler `τ` (exact zero test) for every example scene, chains of 1–5
 //! joints and modified-DH robots; evaluated in `f64` line by line it equals the independent nalgebra
 //! inverse dynamics for chains of up to 12 joints; and it keeps its own rules (no trivial or repeated
-//! line, names defined before use, structural zeros absent).
+//! line, names defined before use, structural zeros absent). The listings of PPP and the elbow arm are
+//! reviewed snapshots.
+
+mod common;
 
 use std::collections::{HashMap, HashSet};
 use symdyn::algebra::{Expr, Poly, Symbol};
@@ -341,4 +344,21 @@ fn cli_json_lists_the_program() {
     );
     assert_eq!(doc["tau"].as_array().map(Vec::len), Some(6));
     assert_eq!(doc["ops"]["mul"], program.op_count().mul);
+}
+
+/// The listings of the two smallest examples, reviewed by hand: PPP (forces only, gravity entering as
+/// the base acceleration `aj1_2 = −g − q̈1`) and the planar elbow (text and LaTeX).
+#[test]
+fn listings_of_ppp_and_elbow() {
+    use symdyn::print::Style;
+    use symdyn::report::compact_program;
+    for (name, style, tag) in [
+        ("ppp", Style::Text, "ppp_text"),
+        ("elbow", Style::Text, "elbow_text"),
+        ("elbow", Style::Latex, "elbow_latex"),
+    ] {
+        let robot = example(name);
+        let program = CompactProgram::derive(&robot).expect("valid robot");
+        assert_snap!(tag, compact_program(&program, &robot.inputs, style));
+    }
 }
