@@ -483,3 +483,47 @@ fn substitute(p: &Poly, map: &HashMap<AtomId, Poly>) -> Poly {
     }
     Poly::sum(parts.iter())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(s: &str) -> Poly {
+        to_poly(&crate::parse::parse_expr(s).expect("valid expression"))
+    }
+
+    #[test]
+    fn trivial_values_are_constants_atoms_and_negated_atoms() {
+        for (s, want) in [
+            ("0", true),
+            ("-3/2", true),
+            ("x", true),
+            ("-cos(q1)", true),
+            ("2*x", false),
+            ("x*y", false),
+            ("x^2", false),
+            ("x + 1", false),
+        ] {
+            assert_eq!(trivial(&p(s)), want, "{s}");
+        }
+    }
+
+    #[test]
+    fn operations_are_counted_term_by_term() {
+        for (s, mul, add) in [
+            ("x", 0, 0),
+            ("-x + y", 0, 1),
+            ("2*x^2*y + z - 3", 3, 2),
+            ("x*sin(q1)*qd1", 2, 0),
+        ] {
+            assert_eq!(OpCount::of(&p(s)), OpCount { mul, add }, "{s}");
+        }
+    }
+
+    #[test]
+    fn substitution_replaces_names_by_their_values() {
+        let t = Symbol::new("t");
+        let map = HashMap::from([(crate::algebra::atom::sym(&t), p("x + 1"))]);
+        assert_eq!(substitute(&p("t^2*y - t"), &map), p("(x + 1)^2*y - x - 1"));
+    }
+}
