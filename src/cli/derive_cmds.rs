@@ -1,5 +1,6 @@
 //! `symdyn derive` and `symdyn check`: load a scene (the built-in PPP when none is named), derive, and
-//! print; `derive --compact` prints the compact Newton–Euler program instead of the equations. Warnings go to stderr; the output is the report.
+//! print; `derive --compact` prints the compact Newton–Euler program instead of the equations.
+//! Warnings go to stderr; the output is the report.
 
 use super::CliError;
 use symdyn::dynamics::check::check;
