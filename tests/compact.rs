@@ -31,12 +31,13 @@ fn example(name: &str) -> Robot {
     parse_scene(&text).expect("valid scene").robot
 }
 
-/// A modified-DH robot (R, P, R, R) with symbolic geometry, a symbolic twist and an offset joint angle.
+/// A modified-DH robot (R, P, R, R) with symbolic geometry, a symbolic twist, an offset joint angle and
+/// a joint of rate 2 (`θ4 = 2 q4`).
 const MODIFIED: &str = "robot \"modified RPRR\"\ngravity [0, -g, 0]\ndh modified\n\
 joint 1 revolute  a=0   alpha=0      d=d1   theta=q1\n\
 joint 2 prismatic a=a1  alpha=90deg  d=q2   theta=th2\n\
 joint 3 revolute  a=a2  alpha=al3    d=0    theta=q3+1/3\n\
-joint 4 revolute  a=0   alpha=-90deg d=d4   theta=q4\n\
+joint 4 revolute  a=0   alpha=-90deg d=d4   theta=2*q4\n\
 link 1 mass=m1 com=[rx1,0,rz1] inertia=I1\n\
 link 2 mass=m2 com=[0,ry2,0]\n\
 link 3 mass=3/2 com=[rx3,ry3,rz3] inertia=I3\n\
