@@ -1,9 +1,11 @@
 //! `symdyn derive` and `symdyn check`: load a scene (the built-in PPP when none is named), derive, and
-//! print. Warnings go to stderr; the output is the report.
+//! print; `derive --compact` prints the compact Newton–Euler program instead of the equations.
+//! Warnings go to stderr; the output is the report.
 
 use super::CliError;
 use symdyn::dynamics::check::check;
-use symdyn::dynamics::{Derivation, Frame};
+use symdyn::dynamics::ne_compact::CompactProgram;
+use symdyn::dynamics::{Derivation, Frame, Robot};
 use symdyn::parse::{parse_scene, BUILTIN_PPP};
 use symdyn::print::Style;
 use symdyn::report::{self, Method};
@@ -39,6 +41,12 @@ pub enum FrameArg {
 
 /// Reads and parses the scene, printing its warnings to stderr.
 pub(super) fn load(path: Option<&str>) -> Result<Derivation, CliError> {
+    let (name, robot) = load_robot(path)?;
+    Derivation::new(robot).map_err(|e| CliError::Input(format!("error: {name}: {e}")))
+}
+
+/// Reads and parses the scene, printing its warnings to stderr: its display name and robot.
+fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError> {
     let (name, source) = match path {
         Some(p) => (
             p.to_string(),
@@ -54,7 +62,7 @@ pub(super) fn load(path: Option<&str>) -> Result<Derivation, CliError> {
     for w in &scene.warnings {
         eprintln!("warning: {}", w.render(&name));
     }
-    Derivation::new(scene.robot).map_err(|e| CliError::Input(format!("error: {name}: {e}")))
+    Ok((name, scene.robot))
 }
 
 /// `symdyn derive`.
@@ -81,6 +89,44 @@ pub fn derive(
         Format::Latex => report::equations(&der, method, Style::Latex),
         Format::Json => {
             let doc = report::json(&der, method);
+            format!(
+                "{}\n",
+                serde_json::to_string_pretty(&doc).expect("JSON values serialise")
+            )
+        }
+    })
+}
+
+/// `symdyn derive --compact`: the compact Newton–Euler program (body frames only).
+pub fn derive_compact(
+    scene: Option<&str>,
+    method: MethodArg,
+    frame: FrameArg,
+    format: Format,
+    ascii: bool,
+) -> Result<String, CliError> {
+    if method != MethodArg::NewtonEuler {
+        return Err(CliError::Input(
+            "error: --compact needs --method newton-euler".to_string(),
+        ));
+    }
+    if frame != FrameArg::Body {
+        return Err(CliError::Input(
+            "error: --compact works in body-fixed frames only (--frame body)".to_string(),
+        ));
+    }
+    let (name, robot) = load_robot(scene)?;
+    let program = CompactProgram::derive(&robot)
+        .map_err(|e| CliError::Input(format!("error: {name}: {e}")))?;
+    Ok(match format {
+        Format::Text => report::compact_program(
+            &program,
+            &robot.inputs,
+            if ascii { Style::Ascii } else { Style::Text },
+        ),
+        Format::Latex => report::compact_program(&program, &robot.inputs, Style::Latex),
+        Format::Json => {
+            let doc = report::compact_json(&program, &robot.name, &robot.inputs);
             format!(
                 "{}\n",
                 serde_json::to_string_pretty(&doc).expect("JSON values serialise")

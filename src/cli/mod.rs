@@ -42,6 +42,10 @@ pub enum Command {
         /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
         #[arg(long)]
         ascii: bool,
+        /// With `--method newton-euler`: print the compact program of named intermediates
+        /// (`w3_2 = …`, then `tau_k = …`) instead of the expanded equations.
+        #[arg(long)]
+        compact: bool,
     },
     /// Prove that Euler–Lagrange and Newton–Euler (both frames) agree, that D(q) is symmetric and that
     /// Ḋ − 2C is skew-symmetric; exit non-zero if any claim fails.
@@ -213,7 +217,14 @@ pub fn run(args: Args) -> Result<String, CliError> {
             frame,
             format,
             ascii,
-        } => derive_cmds::derive(scene.as_deref(), method, frame, format, ascii),
+            compact,
+        } => {
+            if compact {
+                derive_cmds::derive_compact(scene.as_deref(), method, frame, format, ascii)
+            } else {
+                derive_cmds::derive(scene.as_deref(), method, frame, format, ascii)
+            }
+        }
         Command::Check { scene } => derive_cmds::check_cmd(scene.as_deref()),
         Command::Repl { scene } => repl_cmd::repl(scene.as_deref()),
         Command::Sheet {

@@ -5,6 +5,7 @@
 //! - [`kinematics`]: transforms, centres of mass, Jacobians.
 //! - [`lagrange`]: `D`, `c_ijk`, `C`, `P`, `g`, the equations.
 //! - [`newton_euler`] (generic over the scalar) and [`ne_symbolic`] (its exact inputs, body or inertial).
+//! - [`ne_compact`]: the compact Newton–Euler, a program of small named intermediates.
 //! - [`facts`]: what is structurally zero; [`derivation`]: one robot's results, computed on demand.
 //! - [`check`]: the proofs; [`numeric`]: an independent `f64` inverse dynamics for cross-checks.
 
@@ -15,6 +16,7 @@ pub mod inertia;
 pub mod kinematics;
 pub mod lagrange;
 pub mod model;
+pub mod ne_compact;
 pub mod ne_symbolic;
 pub mod newton_euler;
 pub mod numeric;

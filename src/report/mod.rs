@@ -1,8 +1,10 @@
 //! Reports of a derivation as text: the equations of motion (text, ASCII or LaTeX), the JSON document
 //! and the proof report. Pure functions from a [`Derivation`] to strings or JSON values; no I/O.
 
+mod compact;
 mod json;
 
+pub use compact::{program as compact_program, program_json as compact_json};
 pub use json::json;
 
 use crate::algebra::tidy::equation_terms;
