@@ -133,6 +133,7 @@ fn quick_bench_writes_consistent_results() {
         for method in [
             "el",
             "ne",
+            "ne-compact",
             "proof",
             "el+ne+proof",
             "eval-tau",

@@ -12,6 +12,7 @@ use super::size::Size;
 use super::BenchError;
 use crate::algebra::Symbol;
 use crate::dynamics::check::check;
+use crate::dynamics::ne_compact::CompactProgram;
 use crate::dynamics::{numeric as ne_numeric, Derivation, Frame, Robot};
 use crate::numeric::{compile, compile_tau, robot_parameters};
 use std::collections::HashMap;
@@ -25,6 +26,9 @@ pub enum Method {
     Lagrange,
     /// Newton–Euler τ in body-fixed frames.
     NewtonEuler,
+    /// Newton–Euler τ in body-fixed frames as a compact program of named intermediates
+    /// ([`crate::dynamics::ne_compact`]); its size is the program's lines and operations.
+    NewtonEulerCompact,
     /// Both derivations, then the proof; gives the records `proof` and `el+ne+proof`.
     Proof,
     /// One call of the compiled τ(q, q̇, q̈).
@@ -40,9 +44,10 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order the runner measures them.
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::Lagrange,
         Method::NewtonEuler,
+        Method::NewtonEulerCompact,
         Method::Proof,
         Method::EvalTau,
         Method::EvalTauProgram,
@@ -55,6 +60,7 @@ impl Method {
         match self {
             Method::Lagrange => "el",
             Method::NewtonEuler => "ne",
+            Method::NewtonEulerCompact => "ne-compact",
             Method::Proof => "proof",
             Method::EvalTau => "eval-tau",
             Method::EvalTauProgram => "eval-tau-program",
@@ -206,6 +212,25 @@ pub fn measure(
                 ok(method.name(), secs),
                 Size::of_polys(&ne.tau),
             )])
+        }
+        Method::NewtonEulerCompact => {
+            let t = Instant::now();
+            let program = CompactProgram::derive(&robot).map_err(|e| BenchError::Robot {
+                robot: spec.name(),
+                message: e.to_string(),
+            })?;
+            let secs = t.elapsed().as_secs_f64();
+            let ops = program.op_count();
+            let mut r = ok(method.name(), secs);
+            r.terms = Some(program.intermediates.len() as u64 + program.tau.len() as u64);
+            r.mults = Some(ops.mul as u64);
+            r.adds = Some(ops.add as u64);
+            r.ops = Some(ops.mul as u64 + ops.add as u64);
+            r.note = format!(
+                "{} intermediates; terms = program lines; ops without sharing",
+                program.intermediates.len()
+            );
+            Ok(vec![r])
         }
         Method::Proof => {
             let t = Instant::now();

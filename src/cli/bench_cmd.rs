@@ -449,6 +449,7 @@ fn scaling_points(records: &[Record]) -> (Vec<Point>, Vec<String>) {
     let series = [
         ("el", "Euler–Lagrange"),
         ("ne", "Newton–Euler"),
+        ("ne-compact", "Newton–Euler, compact"),
         ("proof", "proof"),
         ("sympy", "SymPy"),
         ("sympy+trigsimp", "SymPy + trigsimp"),
