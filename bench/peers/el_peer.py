@@ -39,10 +39,26 @@ def load_engine(name):
     return E
 
 
-def derive(E, robot, trigsimp):
-    """Returns the list of result expressions: D (n*n), Christoffel symbols (i<=j, all k), g (n)."""
+def parser(E, robot):
+    """A function from symdyn's ASCII syntax to the engine's expressions. Every name in the robot's
+    `symbols` list (and q1..qn) is declared a symbol first, so that names such as `I` or `E` are not
+    read as the imaginary unit or Euler's number; SymPy parses (`^` is a power), and SymEngine
+    converts SymPy's result."""
+    import sympy
+    names = list(robot.get("symbols", [])) + [f"q{i}" for i in range(1, robot["dof"] + 1)]
+    local = {name: sympy.Symbol(name) for name in names}
+
+    def parse(text):
+        e = sympy.parse_expr(text.replace("^", "**"), local_dict=local)
+        return e if E is sympy else E.sympify(e)
+
+    return parse
+
+
+def derive(E, robot, trigsimp, S):
+    """Returns the list of result expressions: D (n*n), Christoffel symbols (i<=j, all k), g (n).
+    `S` parses an expression of the robot description (see `parser`)."""
     n = robot["dof"]
-    S = E.sympify
     q = [E.Symbol(f"q{i}") for i in range(1, n + 1)]
     modified = robot.get("convention", "standard") == "modified"
 
@@ -76,7 +92,7 @@ def derive(E, robot, trigsimp):
 
     g0 = E.Matrix([S(x) for x in robot["gravity"]])
     D = E.zeros(n, n)
-    P = S(0)
+    P = E.Integer(0)
     for i, link in enumerate(robot["links"], start=1):
         m = S(link["mass"])
         r = E.Matrix([S(x) for x in link["com"]] + [1])
@@ -97,7 +113,7 @@ def derive(E, robot, trigsimp):
 
     results = [D[k, j] for k in range(n) for j in range(n)]
     dD = [[[E.diff(D[k, j], q[i]) for i in range(n)] for j in range(n)] for k in range(n)]
-    half = S(1) / 2
+    half = E.Rational(1, 2)
     for k in range(n):
         for i in range(n):
             for j in range(i, n):
@@ -158,8 +174,29 @@ def main():
         robot = json.load(f)
     E = load_engine(args.engine)
     version = getattr(E, "__version__", "?")
+    # Parse the description's strings before the clock starts: the derivation alone is timed.
+    parse = parser(E, robot)
+    cache = {}
+
+    def S(text):
+        if text not in cache:
+            cache[text] = parse(text)
+        return cache[text]
+
+    for j in robot["joints"]:
+        for k in ("a", "alpha", "d", "theta"):
+            S(j[k])
+    for link in robot["links"]:
+        S(link["mass"])
+        for x in link["com"]:
+            S(x)
+        for row in link["inertia"]:
+            for x in row:
+                S(x)
+    for x in robot["gravity"]:
+        S(x)
     start = time.perf_counter()
-    results = derive(E, robot, args.trigsimp)
+    results = derive(E, robot, args.trigsimp, S)
     seconds = time.perf_counter() - start
     ops, terms = (None, None) if args.no_count else count(E, results)
     record = {
@@ -174,10 +211,10 @@ def main():
     if args.evaluate:
         with open(args.evaluate) as f:
             values = json.load(f)
-        subs = {E.Symbol(k): E.sympify(v) for k, v in values.items()}
+        subs = {E.Symbol(k): E.Float(float(v)) for k, v in values.items()}
         n = robot["dof"]
-        record["D"] = [float(E.sympify(e).subs(subs)) for e in results[: n * n]]
-        record["g"] = [float(E.sympify(e).subs(subs)) for e in results[len(results) - n:]]
+        record["D"] = [float(e.subs(subs)) for e in results[: n * n]]
+        record["g"] = [float(e.subs(subs)) for e in results[len(results) - n:]]
     print(json.dumps(record))
 
 
