@@ -14,6 +14,7 @@
 
 use super::atom::{self, AtomId, Class};
 use super::expr::Expr;
+use super::fast_hash::FxHashMap;
 use super::number::{split_square, Rational};
 use super::symbol::Symbol;
 use num_bigint::BigInt;
@@ -57,36 +58,6 @@ impl Mono {
             .map_or(0, |i| self.0[i].1)
     }
 
-    /// The product of two monomials (exponents added, no reduction).
-    fn mul(&self, other: &Mono) -> Mono {
-        let (a, b) = (&self.0, &other.0);
-        let mut out = Vec::with_capacity(a.len() + b.len());
-        let (mut i, mut j) = (0, 0);
-        while i < a.len() && j < b.len() {
-            match a[i].0.cmp(&b[j].0) {
-                std::cmp::Ordering::Less => {
-                    out.push(a[i]);
-                    i += 1;
-                }
-                std::cmp::Ordering::Greater => {
-                    out.push(b[j]);
-                    j += 1;
-                }
-                std::cmp::Ordering::Equal => {
-                    let e = a[i].1 + b[j].1;
-                    if e != 0 {
-                        out.push((a[i].0, e));
-                    }
-                    i += 1;
-                    j += 1;
-                }
-            }
-        }
-        out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
-        Mono(out)
-    }
-
     /// Sets the exponent of an atom (removing it at 0).
     fn with(&self, id: AtomId, e: i32) -> Mono {
         let mut v = self.0.clone();
@@ -102,20 +73,7 @@ impl Mono {
     }
 
     fn needs_reduction(&self) -> bool {
-        let mut surds = 0;
-        for &(id, e) in &self.0 {
-            match atom::class(id) {
-                Class::Sin if e >= 2 => return true,
-                Class::Sqrt => {
-                    surds += 1;
-                    if e != 1 || surds > 1 {
-                        return true;
-                    }
-                }
-                _ => {}
-            }
-        }
-        false
+        needs_reduction(&self.0)
     }
 
     /// Whether every atom is a symbol to a non-negative power (a plain polynomial monomial).
@@ -124,6 +82,63 @@ impl Mono {
             .iter()
             .all(|&(id, e)| e > 0 && matches!(atom::class(id), Class::Param | Class::Coord))
     }
+}
+
+impl std::borrow::Borrow<[(AtomId, i32)]> for Mono {
+    /// A monomial hashes and compares as its slice of factors, so hash maps keyed by `Mono` can be
+    /// probed with a product still in a scratch buffer.
+    fn borrow(&self) -> &[(AtomId, i32)] {
+        &self.0
+    }
+}
+
+/// Writes the product of two sorted factor lists into `out` (cleared first): exponents added, atoms
+/// whose exponents cancel dropped, no reduction.
+#[inline]
+fn mul_into(a: &[(AtomId, i32)], b: &[(AtomId, i32)], out: &mut Vec<(AtomId, i32)>) {
+    out.clear();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        match a[i].0.cmp(&b[j].0) {
+            std::cmp::Ordering::Less => {
+                out.push(a[i]);
+                i += 1;
+            }
+            std::cmp::Ordering::Greater => {
+                out.push(b[j]);
+                j += 1;
+            }
+            std::cmp::Ordering::Equal => {
+                let e = a[i].1 + b[j].1;
+                if e != 0 {
+                    out.push((a[i].0, e));
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend_from_slice(&b[j..]);
+}
+
+/// Whether a factor list breaks a rule of the normal form (`sin²`, or surds not reduced).
+#[inline]
+fn needs_reduction(factors: &[(AtomId, i32)]) -> bool {
+    let mut surds = 0;
+    for &(id, e) in factors {
+        match atom::class(id) {
+            Class::Sin if e >= 2 => return true,
+            Class::Sqrt => {
+                surds += 1;
+                if e != 1 || surds > 1 {
+                    return true;
+                }
+            }
+            _ => {}
+        }
+    }
+    false
 }
 
 /// Calls `out` with the reduced monomials whose sum equals `coeff · m`.
@@ -284,6 +299,9 @@ impl Poly {
         if c.is_zero() {
             return Poly::zero();
         }
+        if c.is_one() {
+            return self.clone();
+        }
         Poly {
             terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect(),
         }
@@ -319,14 +337,41 @@ impl Poly {
         Poly { terms: out }
     }
 
-    /// `self − other`.
+    /// `self − other`, merging the sorted term lists.
     pub fn sub(&self, other: &Poly) -> Poly {
-        self.add(&other.scale(&Rational::int(-1)))
+        let (a, b) = (&self.terms, &other.terms);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i].clone());
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push((b[j].0.clone(), -&b[j].1));
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    let c = &a[i].1 - &b[j].1;
+                    if !c.is_zero() {
+                        out.push((a[i].0.clone(), c));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend(b[j..].iter().map(|(m, c)| (m.clone(), -c)));
+        Poly { terms: out }
     }
 
     /// `−self`.
     pub fn neg(&self) -> Poly {
-        self.scale(&Rational::int(-1))
+        Poly {
+            terms: self.terms.iter().map(|(m, c)| (m.clone(), -c)).collect(),
+        }
     }
 
     /// `self · other`, reduced.
@@ -340,10 +385,54 @@ impl Poly {
         if let Some(c) = other.as_constant() {
             return self.scale(&c);
         }
-        let mut acc = Accumulator::default();
+        let mut acc = Accumulator::with_capacity(self.terms.len().max(other.terms.len()));
+        let mut buf = Vec::new();
         for (m, c) in &self.terms {
             for (n, d) in &other.terms {
-                reduce(m.mul(n), c * d, &mut |m, c| acc.add(m, c));
+                mul_into(&m.0, &n.0, &mut buf);
+                acc.add_product(&buf, c * d);
+            }
+        }
+        acc.finish()
+    }
+
+    /// `Σ ±aᵢ bᵢ` (a term is subtracted when its flag is set), collected in one pass without forming
+    /// the products one by one.
+    pub fn sum_of_products(terms: &[(&Poly, &Poly, bool)]) -> Poly {
+        let live: Vec<&(&Poly, &Poly, bool)> = terms
+            .iter()
+            .filter(|(a, b, _)| !a.is_zero() && !b.is_zero())
+            .collect();
+        if live.len() == 1 {
+            let (a, b, negate) = *live[0];
+            let p = a.mul(b);
+            return if negate { p.neg() } else { p };
+        }
+        let constant_side = |(a, b, _): &&(&Poly, &Poly, bool)| {
+            a.as_constant().is_some() || b.as_constant().is_some()
+        };
+        if live.iter().all(constant_side) {
+            // Scaled copies merge faster than they hash.
+            let mut acc = Poly::zero();
+            for &&(a, b, negate) in &live {
+                let p = a.mul(b);
+                acc = if negate { acc.sub(&p) } else { acc.add(&p) };
+            }
+            return acc;
+        }
+        let cap = live
+            .iter()
+            .map(|(a, b, _)| a.terms.len().max(b.terms.len()))
+            .sum();
+        let mut acc = Accumulator::with_capacity(cap);
+        let mut buf = Vec::new();
+        for &&(a, b, negate) in &live {
+            for (m, c) in &a.terms {
+                for (n, d) in &b.terms {
+                    mul_into(&m.0, &n.0, &mut buf);
+                    let k = c * d;
+                    acc.add_product(&buf, if negate { -k } else { k });
+                }
             }
         }
         acc.finish()
@@ -380,8 +469,9 @@ impl Poly {
     /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
     /// `d_atom` returns `None` for an atom whose derivative is zero.
     pub fn derive(&self, d_atom: &mut dyn FnMut(AtomId) -> Option<Poly>) -> Poly {
-        let mut memo: HashMap<AtomId, Option<Poly>> = HashMap::new();
-        let mut acc = Accumulator::default();
+        let mut memo: FxHashMap<AtomId, Option<Poly>> = FxHashMap::default();
+        let mut acc = Accumulator::with_capacity(self.terms.len());
+        let mut buf = Vec::new();
         for (m, c) in &self.terms {
             for &(id, e) in &m.0 {
                 let d = memo.entry(id).or_insert_with(|| d_atom(id));
@@ -389,7 +479,8 @@ impl Poly {
                 let rest = m.with(id, e - 1);
                 let k = c * &Rational::int(e as i64);
                 for (n, dc) in &d.terms {
-                    reduce(rest.mul(n), &k * dc, &mut |m, c| acc.add(m, c));
+                    mul_into(&rest.0, &n.0, &mut buf);
+                    acc.add_product(&buf, &k * dc);
                 }
             }
         }
@@ -432,10 +523,36 @@ impl Poly {
 /// Collects terms, adding equal monomials.
 #[derive(Default)]
 struct Accumulator {
-    map: HashMap<Mono, Rational>,
+    map: FxHashMap<Mono, Rational>,
 }
 
 impl Accumulator {
+    fn with_capacity(n: usize) -> Accumulator {
+        Accumulator {
+            map: FxHashMap::with_capacity_and_hasher(n, Default::default()),
+        }
+    }
+
+    /// Adds `c · m` for a product `m` still in a scratch buffer, reducing it first if it needs it;
+    /// allocates a monomial only when it is new.
+    fn add_product(&mut self, m: &[(AtomId, i32)], c: Rational) {
+        if c.is_zero() {
+            return;
+        }
+        if needs_reduction(m) {
+            reduce(Mono(m.to_vec()), c, &mut |m, c| self.add(m, c));
+            return;
+        }
+        if let Some(k) = self.map.get_mut(m) {
+            *k += &c;
+            if k.is_zero() {
+                self.map.remove(m);
+            }
+        } else {
+            self.map.insert(Mono(m.to_vec()), c);
+        }
+    }
+
     fn add(&mut self, m: Mono, c: Rational) {
         if c.is_zero() {
             return;
