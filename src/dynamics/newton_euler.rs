@@ -75,6 +75,19 @@ pub struct NewtonEuler<S> {
 
 /// Runs both recursions.
 pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
+    recurse_with(steps, &|i, alpha, omega| {
+        let inertia = steps[i].inertia.as_ref()?;
+        Some((inertia.mul_vec(alpha), omega.cross(&inertia.mul_vec(omega))))
+    })
+}
+
+/// The two parts `(I_i α_i, ω_i × (I_i ω_i))` of the Euler term of link `i` (0-based), from `i`, `α_i`
+/// and `ω_i`; `None` when the link has no inertia term.
+pub type EulerTerm<'a, S> = dyn Fn(usize, &Vec3<S>, &Vec3<S>) -> Option<(Vec3<S>, Vec3<S>)> + 'a;
+
+/// Runs both recursions with the Euler term of each link given by `euler`, so a caller can evaluate
+/// it in whatever frame is cheapest; [`recurse`] evaluates it with [`Step::inertia`].
+pub fn recurse_with<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>) -> NewtonEuler<S> {
     let n = steps.len();
     let (mut omega, mut alpha, mut a_c, mut a_e, mut g) = (
         Vec::with_capacity(n),
@@ -146,10 +159,8 @@ pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
             let mut ni = n_here
                 .sub(&fi.cross(&r_jc))
                 .add(&f_here.cross(&st.r_origin_com.sub(&s_next)));
-            if let Some(inertia) = &st.inertia {
-                ni = ni
-                    .add(&inertia.mul_vec(&alpha[i]))
-                    .add(&omega[i].cross(&inertia.mul_vec(&omega[i])));
+            if let Some((i_alpha, gyro)) = euler(i, &alpha[i], &omega[i]) {
+                ni = ni.add(&i_alpha).add(&gyro);
             }
             n_next = ni.clone();
             moments[i] = Some(ni);
