@@ -21,8 +21,8 @@ pub struct Rational(Repr);
 enum Repr {
     /// numerator, denominator (> 0), coprime.
     Small(i64, i64),
-    /// Only values that do not fit `Small`.
-    Big(BigRational),
+    /// Only values that do not fit `Small` (boxed, so a coefficient stays three words).
+    Big(Box<BigRational>),
 }
 
 fn gcd_i128(mut a: i128, mut b: i128) -> i128 {
@@ -70,10 +70,10 @@ impl Rational {
         }
         match (i64::try_from(n), i64::try_from(d)) {
             (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
-            _ => Rational(Repr::Big(BigRational::new(
+            _ => Rational(Repr::Big(Box::new(BigRational::new(
                 BigInt::from(n),
                 BigInt::from(d),
-            ))),
+            )))),
         }
     }
 
@@ -82,7 +82,7 @@ impl Rational {
         if let (Some(n), Some(d)) = (r.numer().to_i64(), r.denom().to_i64()) {
             return Rational(Repr::Small(n, d));
         }
-        Rational(Repr::Big(r))
+        Rational(Repr::Big(Box::new(r)))
     }
 
     /// From big integers `num/den`; `None` when `den` is zero.
@@ -97,7 +97,7 @@ impl Rational {
     pub fn to_big(&self) -> BigRational {
         match &self.0 {
             Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
-            Repr::Big(r) => r.clone(),
+            Repr::Big(r) => (**r).clone(),
         }
     }
 
@@ -447,7 +447,7 @@ impl std::ops::Neg for &Rational {
                 Some(m) => Rational(Repr::Small(m, *d)),
                 None => Rational::from_i128(-(*n as i128), *d as i128),
             },
-            Repr::Big(r) => Rational::from_big(-r.clone()),
+            Repr::Big(r) => Rational::from_big(-(**r).clone()),
         }
     }
 }

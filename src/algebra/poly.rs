@@ -20,15 +20,16 @@ use super::symbol::Symbol;
 use num_bigint::BigInt;
 use num_traits::One;
 use std::collections::HashMap;
+use std::sync::Arc;
 
 /// A monomial: atoms with non-zero integer exponents, sorted by id.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Mono(Vec<(AtomId, i32)>);
+pub struct Mono(Arc<[(AtomId, i32)]>);
 
 impl Mono {
     /// The empty monomial, 1.
     pub fn one() -> Mono {
-        Mono(Vec::new())
+        Mono(Arc::from([]))
     }
 
     /// A single atom to a power.
@@ -36,14 +37,14 @@ impl Mono {
         if e == 0 {
             Mono::one()
         } else {
-            Mono(vec![(id, e)])
+            Mono(Arc::from([(id, e)]))
         }
     }
 
     /// From atoms already sorted by id with non-zero exponents.
     pub(crate) fn from_sorted(v: Vec<(AtomId, i32)>) -> Mono {
         debug_assert!(v.windows(2).all(|w| w[0].0 < w[1].0) && v.iter().all(|&(_, e)| e != 0));
-        Mono(v)
+        Mono(Arc::from(v))
     }
 
     /// The atoms and exponents.
@@ -60,7 +61,7 @@ impl Mono {
 
     /// Sets the exponent of an atom (removing it at 0).
     fn with(&self, id: AtomId, e: i32) -> Mono {
-        let mut v = self.0.clone();
+        let mut v = self.0.to_vec();
         match v.binary_search_by_key(&id, |(a, _)| *a) {
             Ok(i) if e == 0 => {
                 v.remove(i);
@@ -69,7 +70,7 @@ impl Mono {
             Err(i) if e != 0 => v.insert(i, (id, e)),
             Err(_) => {}
         }
-        Mono(v)
+        Mono(Arc::from(v))
     }
 
     fn needs_reduction(&self) -> bool {
@@ -179,7 +180,7 @@ fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
             let at = rest.partition_point(|&(a, _)| a < id);
             rest.insert(at, (id, 1));
         }
-        reduce(Mono(rest), coeff, out);
+        reduce(Mono(Arc::from(rest)), coeff, out);
         return;
     }
     // sin^e x = sin^(e mod 2) x · (1 − cos² x)^(e div 2)
@@ -473,7 +474,7 @@ impl Poly {
         let mut acc = Accumulator::with_capacity(self.terms.len());
         let mut buf = Vec::new();
         for (m, c) in &self.terms {
-            for &(id, e) in &m.0 {
+            for &(id, e) in m.0.iter() {
                 let d = memo.entry(id).or_insert_with(|| d_atom(id));
                 let Some(d) = d else { continue };
                 let rest = m.with(id, e - 1);
@@ -509,7 +510,7 @@ impl Poly {
             .map(|(m, c)| {
                 let mut factors = Vec::with_capacity(m.0.len() + 1);
                 factors.push(Expr::num(c.clone()));
-                for &(id, e) in &m.0 {
+                for &(id, e) in m.0.iter() {
                     let base = cache.entry(id).or_insert_with(|| atom::to_expr(id)).clone();
                     factors.push(base.pow(e as i64).expect("atoms are never zero"));
                 }
@@ -540,7 +541,71 @@ impl Accumulator {
             return;
         }
         if needs_reduction(m) {
-            reduce(Mono(m.to_vec()), c, &mut |m, c| self.add(m, c));
+            self.add_reduced(m, c);
+            return;
+        }
+        self.add_slice(m, c);
+    }
+
+    /// Adds `c · m` for a monomial `m` that needs reduction. `sin^e x` becomes
+    /// `sin^(e mod 2) x · (1 − cos² x)^(e div 2)` on a scratch copy, each term reduced again for the
+    /// next angle; surds go the general way ([`reduce`]).
+    fn add_reduced(&mut self, m: &[(AtomId, i32)], c: Rational) {
+        if m.iter().any(|&(id, _)| atom::class(id) == Class::Sqrt) {
+            reduce(Mono(Arc::from(m)), c, &mut |m, c| self.add(m, c));
+            return;
+        }
+        let Some(at) = m
+            .iter()
+            .position(|&(id, e)| atom::class(id) == Class::Sin && e >= 2)
+        else {
+            self.add_slice(m, c);
+            return;
+        };
+        let (sin_id, e) = m[at];
+        let cos_id = atom::partner(sin_id);
+        let n = e / 2;
+        let mut t: Vec<(AtomId, i32)> = Vec::with_capacity(m.len() + 1);
+        t.extend_from_slice(m);
+        if e % 2 == 0 {
+            t.remove(at);
+        } else {
+            t[at].1 = 1;
+        }
+        // cos x sorts before sin x (class 4 < 5), so its slot is found by search.
+        let cos_at = match t.binary_search_by_key(&cos_id, |&(a, _)| a) {
+            Ok(i) => i,
+            Err(i) => {
+                t.insert(i, (cos_id, 0));
+                i
+            }
+        };
+        let cos_e = t[cos_at].1;
+        let mut binom = Rational::one();
+        for k in 0..=n {
+            let mut u = t.clone();
+            u[cos_at].1 = cos_e + 2 * k;
+            if u[cos_at].1 == 0 {
+                u.remove(cos_at);
+            }
+            let coeff = if k % 2 == 0 {
+                &c * &binom
+            } else {
+                -(&c * &binom)
+            };
+            if needs_reduction(&u) {
+                self.add_reduced(&u, coeff);
+            } else {
+                self.add_slice(&u, coeff);
+            }
+            // C(n, k+1) = C(n, k) (n − k)/(k + 1)
+            binom = &binom * &Rational::new((n - k) as i64, (k + 1) as i64).expect("non-zero");
+        }
+    }
+
+    /// Adds `c · m` for a reduced monomial given as a slice (allocates only when it is new).
+    fn add_slice(&mut self, m: &[(AtomId, i32)], c: Rational) {
+        if c.is_zero() {
             return;
         }
         if let Some(k) = self.map.get_mut(m) {
@@ -549,7 +614,7 @@ impl Accumulator {
                 self.map.remove(m);
             }
         } else {
-            self.map.insert(Mono(m.to_vec()), c);
+            self.map.insert(Mono(Arc::from(m)), c);
         }
     }
 
@@ -573,10 +638,28 @@ impl Accumulator {
     }
 
     fn finish(self) -> Poly {
-        let mut terms: Vec<(Mono, Rational)> = self.map.into_iter().collect();
-        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-        Poly { terms }
+        let mut keyed: Vec<(u128, Mono, Rational)> = self
+            .map
+            .into_iter()
+            .map(|(m, c)| (prefix_key(&m.0), m, c))
+            .collect();
+        keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        Poly {
+            terms: keyed.into_iter().map(|(_, m, c)| (m, c)).collect(),
+        }
     }
+}
+
+/// An order-preserving key of a monomial's first two factors: comparing keys, then the monomials on a
+/// tie, is the monomial order (an absent factor is 0, below every present one, as a shorter prefix
+/// sorts first). Sorting by it mostly avoids following the monomials' pointers.
+fn prefix_key(m: &[(AtomId, i32)]) -> u128 {
+    let pair = |k: usize| {
+        m.get(k).map_or(0u64, |&(id, e)| {
+            ((id as u64 + 1) << 32) | (e as i64 - i32::MIN as i64) as u64
+        })
+    };
+    ((pair(0) as u128) << 64) | pair(1) as u128
 }
 
 impl std::ops::Add<&Poly> for &Poly {
