@@ -3,7 +3,7 @@
 
 use super::kinematics::Kinematics;
 use super::model::{JointKind, Robot};
-use super::newton_euler::{recurse, recurse_with, NewtonEuler, Step};
+use super::newton_euler::{recurse_with, NewtonEuler, Step};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::{to_poly, Poly, Symbol};
 
@@ -105,18 +105,21 @@ fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) ->
 /// canonical, without ever expanding `I⁰_i`.
 pub fn derive(robot: &Robot, kin: &Kinematics, frame: Frame) -> NewtonEuler<Poly> {
     match frame {
-        Frame::Body => recurse(&steps(robot, kin, frame)),
+        Frame::Body => recurse_with(&steps(robot, kin, frame), None),
         Frame::Inertial => {
             let steps = build(robot, kin, frame, false);
-            recurse_with(&steps, &|i, alpha, omega| {
-                let local = steps[i].inertia.as_ref()?;
-                let r = &kin.rot0[i + 1];
-                let (alpha_i, omega_i) = (r.tr_mul_vec(alpha), r.tr_mul_vec(omega));
-                Some((
-                    r.mul_vec(&local.mul_vec(&alpha_i)),
-                    r.mul_vec(&omega_i.cross(&local.mul_vec(&omega_i))),
-                ))
-            })
+            recurse_with(
+                &steps,
+                Some(&|i, alpha, omega| {
+                    let local = steps[i].inertia.as_ref()?;
+                    let r = &kin.rot0[i + 1];
+                    let (alpha_i, omega_i) = (r.tr_mul_vec(alpha), r.tr_mul_vec(omega));
+                    Some((
+                        r.mul_vec(&local.mul_vec(&alpha_i)),
+                        r.mul_vec(&omega_i.cross(&local.mul_vec(&omega_i))),
+                    ))
+                }),
+            )
         }
     }
 }
