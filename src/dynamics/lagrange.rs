@@ -52,6 +52,9 @@ fn is_constant(p: &Poly) -> bool {
     })
 }
 
+/// A link's inertia tensor in its own frame and the columns of `R_iᵀ J_ω,i`.
+type LinkInertia = (Mat3<Poly>, Vec<Vec3<Poly>>);
+
 fn quad(u: &Vec3<Poly>, m: &Mat3<Poly>, v: &Vec3<Poly>) -> Poly {
     u.dot(&m.mul_vec(v))
 }
@@ -61,8 +64,10 @@ impl Lagrange {
     pub fn derive(robot: &Robot, kin: &Kinematics) -> Lagrange {
         let n = robot.dof();
         let mut facts = Vec::new();
-        // R_i I_i R_iᵀ for the links that rotate and have an inertia.
-        let inertia0: Vec<Option<Mat3<Poly>>> = (0..n)
+        // The rotational term J_ω,iᵀ (R_i I_i R_iᵀ) J_ω,i, for the links that rotate and have an
+        // inertia, as (R_iᵀ J_ω,i)ᵀ I_i (R_iᵀ J_ω,i): the joint axes seen from link i, where the tensor
+        // is given, so the large expanded R_i I_i R_iᵀ is never formed (same polynomials).
+        let rotational: Vec<Option<LinkInertia>> = (0..n)
             .map(|i| {
                 let tensor = robot.links[i].inertia.as_ref()?;
                 if !kin.rotates[i] {
@@ -72,7 +77,17 @@ impl Lagrange {
                     std::array::from_fn(|c| to_poly(&tensor[r][c]))
                 }));
                 let r = &kin.rot0[i + 1];
-                Some(r.mul(&local).mul(&r.transpose()))
+                let axes = kin.jw[i]
+                    .iter()
+                    .map(|w| {
+                        if w.is_exact_zero() {
+                            Vec3::zero()
+                        } else {
+                            r.tr_mul_vec(w)
+                        }
+                    })
+                    .collect();
+                Some((local, axes))
             })
             .collect();
         let masses: Vec<Poly> = robot.links.iter().map(|l| to_poly(&l.mass)).collect();
@@ -85,10 +100,10 @@ impl Lagrange {
                     if !jk.is_exact_zero() && !jj.is_exact_zero() {
                         parts.push(masses[i].mul(&jk.dot(jj)));
                     }
-                    if let Some(i0) = &inertia0[i] {
-                        let (wk, wj) = (&kin.jw[i][k], &kin.jw[i][j]);
+                    if let Some((local, axes)) = &rotational[i] {
+                        let (wk, wj) = (&axes[k], &axes[j]);
                         if !wk.is_exact_zero() && !wj.is_exact_zero() {
-                            parts.push(quad(wk, i0, wj));
+                            parts.push(quad(wk, local, wj));
                         }
                     }
                 }
