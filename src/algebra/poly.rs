@@ -457,14 +457,36 @@ impl Poly {
     }
 
     /// The sum of many polynomials.
+    ///
+    /// The sorted term lists are merged pairwise, as a balanced tree (no hashing, no sorting).
     pub fn sum<'a, I: IntoIterator<Item = &'a Poly>>(items: I) -> Poly {
-        let mut acc = Accumulator::default();
-        for p in items {
-            for (m, c) in &p.terms {
-                acc.add(m.clone(), c.clone());
-            }
+        let mut level: Vec<Poly> = Vec::new();
+        let refs: Vec<&Poly> = items.into_iter().filter(|p| !p.is_zero()).collect();
+        match refs.len() {
+            0 => return Poly::zero(),
+            1 => return refs[0].clone(),
+            _ => {}
         }
-        acc.finish()
+        // First level straight from the borrowed inputs, then owned partial sums.
+        for pair in refs.chunks(2) {
+            level.push(match pair {
+                [a, b] => a.add(b),
+                [a] => (*a).clone(),
+                _ => unreachable!("chunks of two"),
+            });
+        }
+        while level.len() > 1 {
+            let mut next = Vec::with_capacity(level.len().div_ceil(2));
+            let mut it = level.into_iter();
+            while let Some(a) = it.next() {
+                next.push(match it.next() {
+                    Some(b) => a.add(&b),
+                    None => a,
+                });
+            }
+            level = next;
+        }
+        level.pop().unwrap_or_default()
     }
 
     /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
@@ -582,21 +604,26 @@ impl Accumulator {
         };
         let cos_e = t[cos_at].1;
         let mut binom = Rational::one();
+        let mut without: Vec<(AtomId, i32)> = Vec::new();
         for k in 0..=n {
-            let mut u = t.clone();
-            u[cos_at].1 = cos_e + 2 * k;
-            if u[cos_at].1 == 0 {
-                u.remove(cos_at);
-            }
+            t[cos_at].1 = cos_e + 2 * k;
+            let u: &[(AtomId, i32)] = if t[cos_at].1 == 0 {
+                without.clear();
+                without.extend_from_slice(&t[..cos_at]);
+                without.extend_from_slice(&t[cos_at + 1..]);
+                &without
+            } else {
+                &t
+            };
             let coeff = if k % 2 == 0 {
                 &c * &binom
             } else {
                 -(&c * &binom)
             };
-            if needs_reduction(&u) {
-                self.add_reduced(&u, coeff);
+            if needs_reduction(u) {
+                self.add_reduced(u, coeff);
             } else {
-                self.add_slice(&u, coeff);
+                self.add_slice(u, coeff);
             }
             // C(n, k+1) = C(n, k) (n − k)/(k + 1)
             binom = &binom * &Rational::new((n - k) as i64, (k + 1) as i64).expect("non-zero");
