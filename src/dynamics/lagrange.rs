@@ -161,14 +161,25 @@ impl Lagrange {
             .collect();
         let p = Poly::sum(&p_parts);
         let g: Vec<Poly> = qs.iter().map(|q| poly_diff(&p, q)).collect();
+        // K = ½ Σ_a d_aa q̇_a² + Σ_{a<b} d_ab q̇_a q̇_b (D is symmetric).
+        let half = Rational::new(1, 2).expect("non-zero");
         let k_parts: Vec<Poly> = (0..n)
             .flat_map(|a| {
                 let d = &d;
                 let qds = &qds;
-                (0..n).map(move |b| d[a][b].mul(&qds[a]).mul(&qds[b]))
+                let half = &half;
+                (a..n).map(move |b| {
+                    let rates = qds[a].mul(&qds[b]);
+                    let part = d[a][b].mul(&rates);
+                    if a == b {
+                        part.scale(half)
+                    } else {
+                        part
+                    }
+                })
             })
             .collect();
-        let k = Poly::sum(&k_parts).scale(&Rational::new(1, 2).expect("non-zero"));
+        let k = Poly::sum(&k_parts);
         let tau = (0..n)
             .map(|k| {
                 let mut parts: Vec<Poly> = (0..n).map(|j| d[k][j].mul(&qdds[j])).collect();
