@@ -386,6 +386,9 @@ impl Poly {
         if let Some(c) = other.as_constant() {
             return self.scale(&c);
         }
+        if let Some(p) = self.mul_by_term(other).or_else(|| other.mul_by_term(self)) {
+            return p;
+        }
         let mut acc = Accumulator::with_capacity(self.terms.len().max(other.terms.len()));
         let mut buf = Vec::new();
         for (m, c) in &self.terms {
@@ -412,8 +415,11 @@ impl Poly {
         let constant_side = |(a, b, _): &&(&Poly, &Poly, bool)| {
             a.as_constant().is_some() || b.as_constant().is_some()
         };
-        if live.iter().all(constant_side) {
-            // Scaled copies merge faster than they hash.
+        let term_side = |(a, b, _): &&(&Poly, &Poly, bool)| {
+            a.mul_by_term_is_exact(b) || b.mul_by_term_is_exact(a)
+        };
+        if live.iter().all(constant_side) || live.iter().all(term_side) {
+            // Scaled (or monomial-shifted, sorted) copies merge faster than they hash.
             let mut acc = Poly::zero();
             for &&(a, b, negate) in &live {
                 let p = a.mul(b);
@@ -437,6 +443,43 @@ impl Poly {
             }
         }
         acc.finish()
+    }
+
+    /// Whether `self · t`, for a single-term `t`, needs no reduction in any term: then the products
+    /// are distinct (multiplying by a monomial is injective) and need no collecting, only sorting.
+    /// That holds when `t` has no surd and none of its `sin x` (to a positive power) meets `sin x`
+    /// in `self` (`self` is reduced, so only such a meeting can make a square).
+    fn mul_by_term_is_exact(&self, t: &Poly) -> bool {
+        let [(m, _)] = t.terms.as_slice() else {
+            return false;
+        };
+        m.0.iter().all(|&(id, e)| match atom::class(id) {
+            Class::Sqrt => false,
+            Class::Sin if e > 0 => self.terms.iter().all(|(n, _)| n.exponent(id) <= 0),
+            _ => true,
+        })
+    }
+
+    /// `self · t` for a single-term `t` when [`Poly::mul_by_term_is_exact`]: every product, then one
+    /// sort. `None` otherwise.
+    fn mul_by_term(&self, t: &Poly) -> Option<Poly> {
+        if !self.mul_by_term_is_exact(t) {
+            return None;
+        }
+        let (m, c) = &t.terms[0];
+        let mut buf = Vec::with_capacity(m.0.len() + 8);
+        let mut keyed: Vec<(u128, Mono, Rational)> = self
+            .terms
+            .iter()
+            .map(|(n, d)| {
+                mul_into(&n.0, &m.0, &mut buf);
+                (prefix_key(&buf), Mono(Arc::from(buf.as_slice())), d * c)
+            })
+            .collect();
+        keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        Some(Poly {
+            terms: keyed.into_iter().map(|(_, m, c)| (m, c)).collect(),
+        })
     }
 
     /// `self^e` for `e >= 0`.
@@ -714,5 +757,57 @@ impl std::ops::Neg for &Poly {
     type Output = Poly;
     fn neg(self) -> Poly {
         Poly::neg(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::normal::to_poly;
+
+    fn sorted(p: &Poly) -> bool {
+        p.terms().windows(2).all(|w| w[0].0 < w[1].0)
+    }
+
+    #[test]
+    fn products_by_one_term_reduce_only_where_they_must() {
+        let (s, c) = (Expr::sin(&Expr::q(1)), Expr::cos(&Expr::q(1)));
+        let m = Expr::symbol("m");
+        let p = to_poly(&(s.clone() + c.clone() + m.clone()));
+        // sin q1 meets sin q1: sin² must become 1 − cos².
+        let by_sin = p.mul(&to_poly(&s));
+        let want = to_poly(&(Expr::one() - c.pow(2).unwrap() + &c * &s + &m * &s));
+        assert_eq!(by_sin, want);
+        assert!(sorted(&by_sin));
+        // cos q1 only shifts monomials: the sorted fast path.
+        let by_cos = p.mul(&to_poly(&(Expr::int(3) * &c * &m)));
+        let want = Poly::from_terms(p.terms().iter().map(|(n, k)| {
+            let mut t = vec![
+                (atom::cos(&Symbol::q(1)), 1),
+                (atom::sym(&Symbol::new("m")), 1),
+            ];
+            t.sort();
+            let t = Mono::from_sorted(t);
+            let mut f: Vec<(AtomId, i32)> = Vec::new();
+            mul_into(n.factors(), t.factors(), &mut f);
+            f.sort();
+            (Mono::from_sorted(f), k * &Rational::int(3))
+        }));
+        assert_eq!(by_cos, want);
+        assert!(sorted(&by_cos));
+    }
+
+    #[test]
+    fn sums_merge_to_the_collected_sum() {
+        let parts: Vec<Poly> = (1..=5)
+            .map(|i| to_poly(&(Expr::sin(&Expr::q(i)) - Expr::sin(&Expr::q(i + 1)))))
+            .collect();
+        let total = Poly::sum(&parts);
+        assert_eq!(
+            total,
+            to_poly(&(Expr::sin(&Expr::q(1)) - Expr::sin(&Expr::q(6))))
+        );
+        assert!(sorted(&total));
+        assert!(Poly::sum(&[Poly::zero(), Poly::zero()]).is_zero());
     }
 }
