@@ -590,12 +590,15 @@ impl Poly {
 #[derive(Default)]
 struct Accumulator {
     map: FxHashMap<Mono, Rational>,
+    /// Scratch factor lists for the reduction, reused so that reducing allocates nothing.
+    pool: Vec<Vec<(AtomId, i32)>>,
 }
 
 impl Accumulator {
     fn with_capacity(n: usize) -> Accumulator {
         Accumulator {
             map: FxHashMap::with_capacity_and_hasher(n, Default::default()),
+            pool: Vec::new(),
         }
     }
 
@@ -630,7 +633,8 @@ impl Accumulator {
         let (sin_id, e) = m[at];
         let cos_id = atom::partner(sin_id);
         let n = e / 2;
-        let mut t: Vec<(AtomId, i32)> = Vec::with_capacity(m.len() + 1);
+        let mut t = self.pool.pop().unwrap_or_default();
+        t.clear();
         t.extend_from_slice(m);
         if e % 2 == 0 {
             t.remove(at);
@@ -647,7 +651,7 @@ impl Accumulator {
         };
         let cos_e = t[cos_at].1;
         let mut binom = Rational::one();
-        let mut without: Vec<(AtomId, i32)> = Vec::new();
+        let mut without = self.pool.pop().unwrap_or_default();
         for k in 0..=n {
             t[cos_at].1 = cos_e + 2 * k;
             let u: &[(AtomId, i32)] = if t[cos_at].1 == 0 {
@@ -658,19 +662,24 @@ impl Accumulator {
             } else {
                 &t
             };
-            let coeff = if k % 2 == 0 {
-                &c * &binom
-            } else {
-                -(&c * &binom)
+            let coeff = match (k % 2 == 0, binom.is_one()) {
+                (true, true) => c.clone(),
+                (false, true) => -&c,
+                (true, false) => &c * &binom,
+                (false, false) => -(&c * &binom),
             };
             if needs_reduction(u) {
                 self.add_reduced(u, coeff);
             } else {
                 self.add_slice(u, coeff);
             }
-            // C(n, k+1) = C(n, k) (n − k)/(k + 1)
-            binom = &binom * &Rational::new((n - k) as i64, (k + 1) as i64).expect("non-zero");
+            if k < n && n - k != k + 1 {
+                // C(n, k+1) = C(n, k) (n − k)/(k + 1)
+                binom = &binom * &Rational::new((n - k) as i64, (k + 1) as i64).expect("non-zero");
+            }
         }
+        self.pool.push(t);
+        self.pool.push(without);
     }
 
     /// Adds `c · m` for a reduced monomial given as a slice (allocates only when it is new).
