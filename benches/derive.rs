@@ -1,5 +1,6 @@
 //! Criterion benchmarks of whole derivations: each example scene by Euler–Lagrange (D, c_ijk, C, g, τ)
-//! and by Newton–Euler (body frames), and the proof that they agree.
+//! and by Newton–Euler (body frames, inertial frame), and the proof that they agree; generic symbolic
+//! chains by both methods.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use symdyn::dynamics::check::check;
@@ -37,8 +38,33 @@ fn bench(c: &mut Criterion) {
                     .len()
             })
         });
+        group.bench_function(format!("{name}: Newton–Euler (inertial)"), |b| {
+            b.iter(|| {
+                Derivation::new(robot.clone())
+                    .unwrap()
+                    .newton_euler(Frame::Inertial)
+                    .tau
+                    .len()
+            })
+        });
         group.bench_function(format!("{name}: both and the proof"), |b| {
             b.iter(|| check(&Derivation::new(robot.clone()).unwrap()).len())
+        });
+    }
+    // Generic chains with every parameter symbolic: how the derivations swell with n.
+    for n in [4, 6] {
+        let robot = symdyn::chains::chain(n);
+        group.bench_function(format!("chain({n}): Euler–Lagrange"), |b| {
+            b.iter(|| Derivation::new(robot.clone()).unwrap().lagrange().tau.len())
+        });
+        group.bench_function(format!("chain({n}): Newton–Euler (body)"), |b| {
+            b.iter(|| {
+                Derivation::new(robot.clone())
+                    .unwrap()
+                    .newton_euler(Frame::Body)
+                    .tau
+                    .len()
+            })
         });
     }
     group.finish();

@@ -13,6 +13,7 @@ pub mod error;
 pub mod eval;
 pub mod expand;
 pub mod expr;
+pub(crate) mod fast_hash;
 pub mod normal;
 pub mod number;
 pub mod poly;

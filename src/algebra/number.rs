@@ -21,8 +21,8 @@ pub struct Rational(Repr);
 enum Repr {
     /// numerator, denominator (> 0), coprime.
     Small(i64, i64),
-    /// Only values that do not fit `Small`.
-    Big(BigRational),
+    /// Only values that do not fit `Small` (boxed, so a coefficient stays three words).
+    Big(Box<BigRational>),
 }
 
 fn gcd_i128(mut a: i128, mut b: i128) -> i128 {
@@ -70,10 +70,10 @@ impl Rational {
         }
         match (i64::try_from(n), i64::try_from(d)) {
             (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
-            _ => Rational(Repr::Big(BigRational::new(
+            _ => Rational(Repr::Big(Box::new(BigRational::new(
                 BigInt::from(n),
                 BigInt::from(d),
-            ))),
+            )))),
         }
     }
 
@@ -82,7 +82,7 @@ impl Rational {
         if let (Some(n), Some(d)) = (r.numer().to_i64(), r.denom().to_i64()) {
             return Rational(Repr::Small(n, d));
         }
-        Rational(Repr::Big(r))
+        Rational(Repr::Big(Box::new(r)))
     }
 
     /// From big integers `num/den`; `None` when `den` is zero.
@@ -97,7 +97,7 @@ impl Rational {
     pub fn to_big(&self) -> BigRational {
         match &self.0 {
             Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
-            Repr::Big(r) => r.clone(),
+            Repr::Big(r) => (**r).clone(),
         }
     }
 
@@ -325,12 +325,74 @@ impl PartialOrd for Rational {
     }
 }
 
+/// Greatest common divisor of two unsigned integers (binary algorithm: no division).
+#[inline]
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// `a/b · c/d` for reduced small fractions without 128-bit division: cross-cancel, then multiply.
+/// `None` on overflow (the caller falls back to the general path).
+#[inline]
+fn mul_small(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
+    if a == 0 || c == 0 {
+        return Some(Rational::zero());
+    }
+    if b == 1 && d == 1 {
+        return Some(Rational(Repr::Small(a.checked_mul(c)?, 1)));
+    }
+    let g1 = gcd_u64(a.unsigned_abs(), d as u64) as i64;
+    let g2 = gcd_u64(c.unsigned_abs(), b as u64) as i64;
+    let n = (a / g1).checked_mul(c / g2)?;
+    let den = (b / g2).checked_mul(d / g1)?;
+    Some(Rational(Repr::Small(n, den)))
+}
+
+/// `a/b + c/d` for reduced small fractions with equal denominators (the common case); `None`
+/// otherwise or on overflow.
+#[inline]
+fn add_small(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
+    if b != d {
+        return None;
+    }
+    let n = a.checked_add(c)?;
+    if b == 1 {
+        return Some(Rational(Repr::Small(n, 1)));
+    }
+    if n == 0 {
+        return Some(Rational::zero());
+    }
+    let g = gcd_u64(n.unsigned_abs(), b as u64) as i64;
+    Some(Rational(Repr::Small(n / g, b / g)))
+}
+
 macro_rules! binop {
-    ($trait:ident, $method:ident, $small:expr, $big:expr) => {
+    ($trait:ident, $method:ident, $fast:expr, $small:expr, $big:expr) => {
         impl std::ops::$trait<&Rational> for &Rational {
             type Output = Rational;
             fn $method(self, rhs: &Rational) -> Rational {
                 if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &rhs.0) {
+                    let fast: fn(i64, i64, i64, i64) -> Option<Rational> = $fast;
+                    if let Some(r) = fast(*a, *b, *c, *d) {
+                        return r;
+                    }
                     let f: fn(i128, i128, i128, i128) -> Option<(i128, i128)> = $small;
                     if let Some((n, d)) = f(*a as i128, *b as i128, *c as i128, *d as i128) {
                         return Rational::from_i128(n, d);
@@ -352,6 +414,7 @@ macro_rules! binop {
 binop!(
     Add,
     add,
+    add_small,
     |a, b, c, d| Some((
         a.checked_mul(d)?.checked_add(c.checked_mul(b)?)?,
         b.checked_mul(d)?
@@ -361,6 +424,7 @@ binop!(
 binop!(
     Sub,
     sub,
+    |a, b, c, d| add_small(a, b, c.checked_neg()?, d),
     |a, b, c, d| Some((
         a.checked_mul(d)?.checked_sub(c.checked_mul(b)?)?,
         b.checked_mul(d)?
@@ -370,6 +434,7 @@ binop!(
 binop!(
     Mul,
     mul,
+    mul_small,
     |a, b, c, d| Some((a.checked_mul(c)?, b.checked_mul(d)?)),
     |x, y| x * y
 );
@@ -378,8 +443,11 @@ impl std::ops::Neg for &Rational {
     type Output = Rational;
     fn neg(self) -> Rational {
         match &self.0 {
-            Repr::Small(n, d) => Rational::from_i128(-(*n as i128), *d as i128),
-            Repr::Big(r) => Rational::from_big(-r.clone()),
+            Repr::Small(n, d) => match n.checked_neg() {
+                Some(m) => Rational(Repr::Small(m, *d)),
+                None => Rational::from_i128(-(*n as i128), *d as i128),
+            },
+            Repr::Big(r) => Rational::from_big(-(**r).clone()),
         }
     }
 }
@@ -454,6 +522,35 @@ mod tests {
         assert_eq!(&r(17, 192) + &r(1, 4), r(65, 192));
         assert_eq!(&r(2, 4) * &r(2, 1), Rational::one());
         assert_eq!(r(3, -6), r(-1, 2));
+    }
+
+    #[test]
+    fn small_fast_paths_agree_with_the_general_path() {
+        let values = [
+            r(0, 1),
+            r(1, 1),
+            r(-1, 1),
+            r(1, 2),
+            r(-3, 4),
+            r(5, 6),
+            r(7, 12),
+            r(-12, 35),
+            r(i64::MAX, 1),
+            r(i64::MIN, 1),
+            r(1, i64::MAX),
+            r(-1, i64::MAX),
+        ];
+        for x in &values {
+            for y in &values {
+                let (xb, yb) = (x.to_big(), y.to_big());
+                assert_eq!((x + y).to_big(), &xb + &yb, "{x} + {y}");
+                assert_eq!((x - y).to_big(), &xb - &yb, "{x} - {y}");
+                assert_eq!((x * y).to_big(), &xb * &yb, "{x} * {y}");
+                assert_eq!(x * y, Rational::from_big(&xb * &yb), "{x} * {y} canonical");
+                assert_eq!(x + y, Rational::from_big(&xb + &yb), "{x} + {y} canonical");
+            }
+            assert_eq!((-x).to_big(), -x.to_big());
+        }
     }
 
     #[test]

@@ -14,20 +14,22 @@
 
 use super::atom::{self, AtomId, Class};
 use super::expr::Expr;
+use super::fast_hash::FxHashMap;
 use super::number::{split_square, Rational};
 use super::symbol::Symbol;
 use num_bigint::BigInt;
 use num_traits::One;
 use std::collections::HashMap;
+use std::sync::Arc;
 
 /// A monomial: atoms with non-zero integer exponents, sorted by id.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Mono(Vec<(AtomId, i32)>);
+pub struct Mono(Arc<[(AtomId, i32)]>);
 
 impl Mono {
     /// The empty monomial, 1.
     pub fn one() -> Mono {
-        Mono(Vec::new())
+        Mono(Arc::from([]))
     }
 
     /// A single atom to a power.
@@ -35,14 +37,14 @@ impl Mono {
         if e == 0 {
             Mono::one()
         } else {
-            Mono(vec![(id, e)])
+            Mono(Arc::from([(id, e)]))
         }
     }
 
     /// From atoms already sorted by id with non-zero exponents.
     pub(crate) fn from_sorted(v: Vec<(AtomId, i32)>) -> Mono {
         debug_assert!(v.windows(2).all(|w| w[0].0 < w[1].0) && v.iter().all(|&(_, e)| e != 0));
-        Mono(v)
+        Mono(Arc::from(v))
     }
 
     /// The atoms and exponents.
@@ -57,39 +59,9 @@ impl Mono {
             .map_or(0, |i| self.0[i].1)
     }
 
-    /// The product of two monomials (exponents added, no reduction).
-    fn mul(&self, other: &Mono) -> Mono {
-        let (a, b) = (&self.0, &other.0);
-        let mut out = Vec::with_capacity(a.len() + b.len());
-        let (mut i, mut j) = (0, 0);
-        while i < a.len() && j < b.len() {
-            match a[i].0.cmp(&b[j].0) {
-                std::cmp::Ordering::Less => {
-                    out.push(a[i]);
-                    i += 1;
-                }
-                std::cmp::Ordering::Greater => {
-                    out.push(b[j]);
-                    j += 1;
-                }
-                std::cmp::Ordering::Equal => {
-                    let e = a[i].1 + b[j].1;
-                    if e != 0 {
-                        out.push((a[i].0, e));
-                    }
-                    i += 1;
-                    j += 1;
-                }
-            }
-        }
-        out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
-        Mono(out)
-    }
-
     /// Sets the exponent of an atom (removing it at 0).
     fn with(&self, id: AtomId, e: i32) -> Mono {
-        let mut v = self.0.clone();
+        let mut v = self.0.to_vec();
         match v.binary_search_by_key(&id, |(a, _)| *a) {
             Ok(i) if e == 0 => {
                 v.remove(i);
@@ -98,24 +70,11 @@ impl Mono {
             Err(i) if e != 0 => v.insert(i, (id, e)),
             Err(_) => {}
         }
-        Mono(v)
+        Mono(Arc::from(v))
     }
 
     fn needs_reduction(&self) -> bool {
-        let mut surds = 0;
-        for &(id, e) in &self.0 {
-            match atom::class(id) {
-                Class::Sin if e >= 2 => return true,
-                Class::Sqrt => {
-                    surds += 1;
-                    if e != 1 || surds > 1 {
-                        return true;
-                    }
-                }
-                _ => {}
-            }
-        }
-        false
+        needs_reduction(&self.0)
     }
 
     /// Whether every atom is a symbol to a non-negative power (a plain polynomial monomial).
@@ -124,6 +83,63 @@ impl Mono {
             .iter()
             .all(|&(id, e)| e > 0 && matches!(atom::class(id), Class::Param | Class::Coord))
     }
+}
+
+impl std::borrow::Borrow<[(AtomId, i32)]> for Mono {
+    /// A monomial hashes and compares as its slice of factors, so hash maps keyed by `Mono` can be
+    /// probed with a product still in a scratch buffer.
+    fn borrow(&self) -> &[(AtomId, i32)] {
+        &self.0
+    }
+}
+
+/// Writes the product of two sorted factor lists into `out` (cleared first): exponents added, atoms
+/// whose exponents cancel dropped, no reduction.
+#[inline]
+fn mul_into(a: &[(AtomId, i32)], b: &[(AtomId, i32)], out: &mut Vec<(AtomId, i32)>) {
+    out.clear();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        match a[i].0.cmp(&b[j].0) {
+            std::cmp::Ordering::Less => {
+                out.push(a[i]);
+                i += 1;
+            }
+            std::cmp::Ordering::Greater => {
+                out.push(b[j]);
+                j += 1;
+            }
+            std::cmp::Ordering::Equal => {
+                let e = a[i].1 + b[j].1;
+                if e != 0 {
+                    out.push((a[i].0, e));
+                }
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend_from_slice(&b[j..]);
+}
+
+/// Whether a factor list breaks a rule of the normal form (`sin²`, or surds not reduced).
+#[inline]
+fn needs_reduction(factors: &[(AtomId, i32)]) -> bool {
+    let mut surds = 0;
+    for &(id, e) in factors {
+        match atom::class(id) {
+            Class::Sin if e >= 2 => return true,
+            Class::Sqrt => {
+                surds += 1;
+                if e != 1 || surds > 1 {
+                    return true;
+                }
+            }
+            _ => {}
+        }
+    }
+    false
 }
 
 /// Calls `out` with the reduced monomials whose sum equals `coeff · m`.
@@ -164,7 +180,7 @@ fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
             let at = rest.partition_point(|&(a, _)| a < id);
             rest.insert(at, (id, 1));
         }
-        reduce(Mono(rest), coeff, out);
+        reduce(Mono(Arc::from(rest)), coeff, out);
         return;
     }
     // sin^e x = sin^(e mod 2) x · (1 − cos² x)^(e div 2)
@@ -284,6 +300,9 @@ impl Poly {
         if c.is_zero() {
             return Poly::zero();
         }
+        if c.is_one() {
+            return self.clone();
+        }
         Poly {
             terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect(),
         }
@@ -319,14 +338,41 @@ impl Poly {
         Poly { terms: out }
     }
 
-    /// `self − other`.
+    /// `self − other`, merging the sorted term lists.
     pub fn sub(&self, other: &Poly) -> Poly {
-        self.add(&other.scale(&Rational::int(-1)))
+        let (a, b) = (&self.terms, &other.terms);
+        let mut out = Vec::with_capacity(a.len() + b.len());
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() && j < b.len() {
+            match a[i].0.cmp(&b[j].0) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i].clone());
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push((b[j].0.clone(), -&b[j].1));
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    let c = &a[i].1 - &b[j].1;
+                    if !c.is_zero() {
+                        out.push((a[i].0.clone(), c));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend(b[j..].iter().map(|(m, c)| (m.clone(), -c)));
+        Poly { terms: out }
     }
 
     /// `−self`.
     pub fn neg(&self) -> Poly {
-        self.scale(&Rational::int(-1))
+        Poly {
+            terms: self.terms.iter().map(|(m, c)| (m.clone(), -c)).collect(),
+        }
     }
 
     /// `self · other`, reduced.
@@ -340,13 +386,100 @@ impl Poly {
         if let Some(c) = other.as_constant() {
             return self.scale(&c);
         }
-        let mut acc = Accumulator::default();
+        if let Some(p) = self.mul_by_term(other).or_else(|| other.mul_by_term(self)) {
+            return p;
+        }
+        let mut acc = Accumulator::with_capacity(self.terms.len().max(other.terms.len()));
+        let mut buf = Vec::new();
         for (m, c) in &self.terms {
             for (n, d) in &other.terms {
-                reduce(m.mul(n), c * d, &mut |m, c| acc.add(m, c));
+                mul_into(&m.0, &n.0, &mut buf);
+                acc.add_product(&buf, c * d);
             }
         }
         acc.finish()
+    }
+
+    /// `Σ ±aᵢ bᵢ` (a term is subtracted when its flag is set), collected in one pass without forming
+    /// the products one by one.
+    pub fn sum_of_products(terms: &[(&Poly, &Poly, bool)]) -> Poly {
+        let live: Vec<&(&Poly, &Poly, bool)> = terms
+            .iter()
+            .filter(|(a, b, _)| !a.is_zero() && !b.is_zero())
+            .collect();
+        if live.len() == 1 {
+            let (a, b, negate) = *live[0];
+            let p = a.mul(b);
+            return if negate { p.neg() } else { p };
+        }
+        let constant_side = |(a, b, _): &&(&Poly, &Poly, bool)| {
+            a.as_constant().is_some() || b.as_constant().is_some()
+        };
+        let term_side = |(a, b, _): &&(&Poly, &Poly, bool)| {
+            a.mul_by_term_is_exact(b) || b.mul_by_term_is_exact(a)
+        };
+        if live.iter().all(constant_side) || live.iter().all(term_side) {
+            // Scaled (or monomial-shifted, sorted) copies merge faster than they hash.
+            let mut acc = Poly::zero();
+            for &&(a, b, negate) in &live {
+                let p = a.mul(b);
+                acc = if negate { acc.sub(&p) } else { acc.add(&p) };
+            }
+            return acc;
+        }
+        let cap = live
+            .iter()
+            .map(|(a, b, _)| a.terms.len().max(b.terms.len()))
+            .sum();
+        let mut acc = Accumulator::with_capacity(cap);
+        let mut buf = Vec::new();
+        for &&(a, b, negate) in &live {
+            for (m, c) in &a.terms {
+                for (n, d) in &b.terms {
+                    mul_into(&m.0, &n.0, &mut buf);
+                    let k = c * d;
+                    acc.add_product(&buf, if negate { -k } else { k });
+                }
+            }
+        }
+        acc.finish()
+    }
+
+    /// Whether `self · t`, for a single-term `t`, needs no reduction in any term: then the products
+    /// are distinct (multiplying by a monomial is injective) and need no collecting, only sorting.
+    /// That holds when `t` has no surd and none of its `sin x` (to a positive power) meets `sin x`
+    /// in `self` (`self` is reduced, so only such a meeting can make a square).
+    fn mul_by_term_is_exact(&self, t: &Poly) -> bool {
+        let [(m, _)] = t.terms.as_slice() else {
+            return false;
+        };
+        m.0.iter().all(|&(id, e)| match atom::class(id) {
+            Class::Sqrt => false,
+            Class::Sin if e > 0 => self.terms.iter().all(|(n, _)| n.exponent(id) <= 0),
+            _ => true,
+        })
+    }
+
+    /// `self · t` for a single-term `t` when [`Poly::mul_by_term_is_exact`]: every product, then one
+    /// sort. `None` otherwise.
+    fn mul_by_term(&self, t: &Poly) -> Option<Poly> {
+        if !self.mul_by_term_is_exact(t) {
+            return None;
+        }
+        let (m, c) = &t.terms[0];
+        let mut buf = Vec::with_capacity(m.0.len() + 8);
+        let mut keyed: Vec<(u128, Mono, Rational)> = self
+            .terms
+            .iter()
+            .map(|(n, d)| {
+                mul_into(&n.0, &m.0, &mut buf);
+                (prefix_key(&buf), Mono(Arc::from(buf.as_slice())), d * c)
+            })
+            .collect();
+        keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        Some(Poly {
+            terms: keyed.into_iter().map(|(_, m, c)| (m, c)).collect(),
+        })
     }
 
     /// `self^e` for `e >= 0`.
@@ -367,29 +500,53 @@ impl Poly {
     }
 
     /// The sum of many polynomials.
+    ///
+    /// The sorted term lists are merged pairwise, as a balanced tree (no hashing, no sorting).
     pub fn sum<'a, I: IntoIterator<Item = &'a Poly>>(items: I) -> Poly {
-        let mut acc = Accumulator::default();
-        for p in items {
-            for (m, c) in &p.terms {
-                acc.add(m.clone(), c.clone());
-            }
+        let mut level: Vec<Poly> = Vec::new();
+        let refs: Vec<&Poly> = items.into_iter().filter(|p| !p.is_zero()).collect();
+        match refs.len() {
+            0 => return Poly::zero(),
+            1 => return refs[0].clone(),
+            _ => {}
         }
-        acc.finish()
+        // First level straight from the borrowed inputs, then owned partial sums.
+        for pair in refs.chunks(2) {
+            level.push(match pair {
+                [a, b] => a.add(b),
+                [a] => (*a).clone(),
+                _ => unreachable!("chunks of two"),
+            });
+        }
+        while level.len() > 1 {
+            let mut next = Vec::with_capacity(level.len().div_ceil(2));
+            let mut it = level.into_iter();
+            while let Some(a) = it.next() {
+                next.push(match it.next() {
+                    Some(b) => a.add(&b),
+                    None => a,
+                });
+            }
+            level = next;
+        }
+        level.pop().unwrap_or_default()
     }
 
     /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
     /// `d_atom` returns `None` for an atom whose derivative is zero.
     pub fn derive(&self, d_atom: &mut dyn FnMut(AtomId) -> Option<Poly>) -> Poly {
-        let mut memo: HashMap<AtomId, Option<Poly>> = HashMap::new();
-        let mut acc = Accumulator::default();
+        let mut memo: FxHashMap<AtomId, Option<Poly>> = FxHashMap::default();
+        let mut acc = Accumulator::with_capacity(self.terms.len());
+        let mut buf = Vec::new();
         for (m, c) in &self.terms {
-            for &(id, e) in &m.0 {
+            for &(id, e) in m.0.iter() {
                 let d = memo.entry(id).or_insert_with(|| d_atom(id));
                 let Some(d) = d else { continue };
                 let rest = m.with(id, e - 1);
                 let k = c * &Rational::int(e as i64);
                 for (n, dc) in &d.terms {
-                    reduce(rest.mul(n), &k * dc, &mut |m, c| acc.add(m, c));
+                    mul_into(&rest.0, &n.0, &mut buf);
+                    acc.add_product(&buf, &k * dc);
                 }
             }
         }
@@ -418,7 +575,7 @@ impl Poly {
             .map(|(m, c)| {
                 let mut factors = Vec::with_capacity(m.0.len() + 1);
                 factors.push(Expr::num(c.clone()));
-                for &(id, e) in &m.0 {
+                for &(id, e) in m.0.iter() {
                     let base = cache.entry(id).or_insert_with(|| atom::to_expr(id)).clone();
                     factors.push(base.pow(e as i64).expect("atoms are never zero"));
                 }
@@ -432,10 +589,114 @@ impl Poly {
 /// Collects terms, adding equal monomials.
 #[derive(Default)]
 struct Accumulator {
-    map: HashMap<Mono, Rational>,
+    map: FxHashMap<Mono, Rational>,
+    /// Scratch factor lists for the reduction, reused so that reducing allocates nothing.
+    pool: Vec<Vec<(AtomId, i32)>>,
 }
 
 impl Accumulator {
+    fn with_capacity(n: usize) -> Accumulator {
+        Accumulator {
+            map: FxHashMap::with_capacity_and_hasher(n, Default::default()),
+            pool: Vec::new(),
+        }
+    }
+
+    /// Adds `c · m` for a product `m` still in a scratch buffer, reducing it first if it needs it;
+    /// allocates a monomial only when it is new.
+    fn add_product(&mut self, m: &[(AtomId, i32)], c: Rational) {
+        if c.is_zero() {
+            return;
+        }
+        if needs_reduction(m) {
+            self.add_reduced(m, c);
+            return;
+        }
+        self.add_slice(m, c);
+    }
+
+    /// Adds `c · m` for a monomial `m` that needs reduction. `sin^e x` becomes
+    /// `sin^(e mod 2) x · (1 − cos² x)^(e div 2)` on a scratch copy, each term reduced again for the
+    /// next angle; surds go the general way ([`reduce`]).
+    fn add_reduced(&mut self, m: &[(AtomId, i32)], c: Rational) {
+        if m.iter().any(|&(id, _)| atom::class(id) == Class::Sqrt) {
+            reduce(Mono(Arc::from(m)), c, &mut |m, c| self.add(m, c));
+            return;
+        }
+        let Some(at) = m
+            .iter()
+            .position(|&(id, e)| atom::class(id) == Class::Sin && e >= 2)
+        else {
+            self.add_slice(m, c);
+            return;
+        };
+        let (sin_id, e) = m[at];
+        let cos_id = atom::partner(sin_id);
+        let n = e / 2;
+        let mut t = self.pool.pop().unwrap_or_default();
+        t.clear();
+        t.extend_from_slice(m);
+        if e % 2 == 0 {
+            t.remove(at);
+        } else {
+            t[at].1 = 1;
+        }
+        // cos x sorts before sin x (class 4 < 5), so its slot is found by search.
+        let cos_at = match t.binary_search_by_key(&cos_id, |&(a, _)| a) {
+            Ok(i) => i,
+            Err(i) => {
+                t.insert(i, (cos_id, 0));
+                i
+            }
+        };
+        let cos_e = t[cos_at].1;
+        let mut binom = Rational::one();
+        let mut without = self.pool.pop().unwrap_or_default();
+        for k in 0..=n {
+            t[cos_at].1 = cos_e + 2 * k;
+            let u: &[(AtomId, i32)] = if t[cos_at].1 == 0 {
+                without.clear();
+                without.extend_from_slice(&t[..cos_at]);
+                without.extend_from_slice(&t[cos_at + 1..]);
+                &without
+            } else {
+                &t
+            };
+            let coeff = match (k % 2 == 0, binom.is_one()) {
+                (true, true) => c.clone(),
+                (false, true) => -&c,
+                (true, false) => &c * &binom,
+                (false, false) => -(&c * &binom),
+            };
+            if needs_reduction(u) {
+                self.add_reduced(u, coeff);
+            } else {
+                self.add_slice(u, coeff);
+            }
+            if k < n && n - k != k + 1 {
+                // C(n, k+1) = C(n, k) (n − k)/(k + 1)
+                binom = &binom * &Rational::new((n - k) as i64, (k + 1) as i64).expect("non-zero");
+            }
+        }
+        self.pool.push(t);
+        self.pool.push(without);
+    }
+
+    /// Adds `c · m` for a reduced monomial given as a slice (allocates only when it is new).
+    fn add_slice(&mut self, m: &[(AtomId, i32)], c: Rational) {
+        if c.is_zero() {
+            return;
+        }
+        if let Some(k) = self.map.get_mut(m) {
+            *k += &c;
+            if k.is_zero() {
+                self.map.remove(m);
+            }
+        } else {
+            self.map.insert(Mono(Arc::from(m)), c);
+        }
+    }
+
     fn add(&mut self, m: Mono, c: Rational) {
         if c.is_zero() {
             return;
@@ -456,10 +717,28 @@ impl Accumulator {
     }
 
     fn finish(self) -> Poly {
-        let mut terms: Vec<(Mono, Rational)> = self.map.into_iter().collect();
-        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-        Poly { terms }
+        let mut keyed: Vec<(u128, Mono, Rational)> = self
+            .map
+            .into_iter()
+            .map(|(m, c)| (prefix_key(&m.0), m, c))
+            .collect();
+        keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        Poly {
+            terms: keyed.into_iter().map(|(_, m, c)| (m, c)).collect(),
+        }
     }
+}
+
+/// An order-preserving key of a monomial's first two factors: comparing keys, then the monomials on a
+/// tie, is the monomial order (an absent factor is 0, below every present one, as a shorter prefix
+/// sorts first). Sorting by it mostly avoids following the monomials' pointers.
+fn prefix_key(m: &[(AtomId, i32)]) -> u128 {
+    let pair = |k: usize| {
+        m.get(k).map_or(0u64, |&(id, e)| {
+            ((id as u64 + 1) << 32) | (e as i64 - i32::MIN as i64) as u64
+        })
+    };
+    ((pair(0) as u128) << 64) | pair(1) as u128
 }
 
 impl std::ops::Add<&Poly> for &Poly {
@@ -487,5 +766,57 @@ impl std::ops::Neg for &Poly {
     type Output = Poly;
     fn neg(self) -> Poly {
         Poly::neg(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::normal::to_poly;
+
+    fn sorted(p: &Poly) -> bool {
+        p.terms().windows(2).all(|w| w[0].0 < w[1].0)
+    }
+
+    #[test]
+    fn products_by_one_term_reduce_only_where_they_must() {
+        let (s, c) = (Expr::sin(&Expr::q(1)), Expr::cos(&Expr::q(1)));
+        let m = Expr::symbol("m");
+        let p = to_poly(&(s.clone() + c.clone() + m.clone()));
+        // sin q1 meets sin q1: sin² must become 1 − cos².
+        let by_sin = p.mul(&to_poly(&s));
+        let want = to_poly(&(Expr::one() - c.pow(2).unwrap() + &c * &s + &m * &s));
+        assert_eq!(by_sin, want);
+        assert!(sorted(&by_sin));
+        // cos q1 only shifts monomials: the sorted fast path.
+        let by_cos = p.mul(&to_poly(&(Expr::int(3) * &c * &m)));
+        let want = Poly::from_terms(p.terms().iter().map(|(n, k)| {
+            let mut t = vec![
+                (atom::cos(&Symbol::q(1)), 1),
+                (atom::sym(&Symbol::new("m")), 1),
+            ];
+            t.sort();
+            let t = Mono::from_sorted(t);
+            let mut f: Vec<(AtomId, i32)> = Vec::new();
+            mul_into(n.factors(), t.factors(), &mut f);
+            f.sort();
+            (Mono::from_sorted(f), k * &Rational::int(3))
+        }));
+        assert_eq!(by_cos, want);
+        assert!(sorted(&by_cos));
+    }
+
+    #[test]
+    fn sums_merge_to_the_collected_sum() {
+        let parts: Vec<Poly> = (1..=5)
+            .map(|i| to_poly(&(Expr::sin(&Expr::q(i)) - Expr::sin(&Expr::q(i + 1)))))
+            .collect();
+        let total = Poly::sum(&parts);
+        assert_eq!(
+            total,
+            to_poly(&(Expr::sin(&Expr::q(1)) - Expr::sin(&Expr::q(6))))
+        );
+        assert!(sorted(&total));
+        assert!(Poly::sum(&[Poly::zero(), Poly::zero()]).is_zero());
     }
 }

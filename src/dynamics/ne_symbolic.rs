@@ -3,7 +3,7 @@
 
 use super::kinematics::Kinematics;
 use super::model::{JointKind, Robot};
-use super::newton_euler::{recurse, NewtonEuler, Step};
+use super::newton_euler::{recurse_with, NewtonEuler, Step};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::{to_poly, Poly, Symbol};
 
@@ -34,6 +34,12 @@ fn mat(t: &[[crate::algebra::Expr; 3]; 3]) -> Mat3<Poly> {
 
 /// The recursion's steps for `robot` in `frame`.
 pub fn steps(robot: &Robot, kin: &Kinematics, frame: Frame) -> Vec<Step<Poly>> {
+    build(robot, kin, frame, true)
+}
+
+/// The steps; with `rotate_inertia` false, [`Step::inertia`] stays in the link's own frame even in
+/// the inertial variant (for [`derive`], which rotates the Euler term instead of the tensor).
+fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) -> Vec<Step<Poly>> {
     let g0 = Vec3(std::array::from_fn(|k| to_poly(&robot.gravity[k])));
     (0..robot.dof())
         .map(|i| {
@@ -56,7 +62,11 @@ pub fn steps(robot: &Robot, kin: &Kinematics, frame: Frame) -> Vec<Step<Poly>> {
                 Frame::Inertial => {
                     let prev = &kin.rot0[i];
                     let here = &kin.rot0[i + 1];
-                    let inertia = inertia.map(|t| here.mul(&t).mul(&here.transpose()));
+                    let inertia = if rotate_inertia {
+                        inertia.map(|t| here.mul(&t).mul(&here.transpose()))
+                    } else {
+                        inertia
+                    };
                     (
                         Mat3::identity(),
                         kin.axis0[i].clone(),
@@ -87,6 +97,29 @@ pub fn steps(robot: &Robot, kin: &Kinematics, frame: Frame) -> Vec<Step<Poly>> {
 }
 
 /// The exact Newton–Euler quantities of `robot` in `frame`.
+///
+/// In the inertial frame the tensor of link `i` is `I⁰_i = R_0^i I_i R_0^iᵀ`, whose expanded entries
+/// are far larger than the vectors they multiply. The Euler term is evaluated as
+/// `I⁰_i α = R_0^i (I_i (R_0^iᵀ α))` and `ω × (I⁰_i ω) = R_0^i (ω' × (I_i ω'))` with `ω' = R_0^iᵀ ω`
+/// (a rotation preserves the cross product): the same polynomials, since the normal form is
+/// canonical, without ever expanding `I⁰_i`.
 pub fn derive(robot: &Robot, kin: &Kinematics, frame: Frame) -> NewtonEuler<Poly> {
-    recurse(&steps(robot, kin, frame))
+    match frame {
+        Frame::Body => recurse_with(&steps(robot, kin, frame), None),
+        Frame::Inertial => {
+            let steps = build(robot, kin, frame, false);
+            recurse_with(
+                &steps,
+                Some(&|i, alpha, omega| {
+                    let local = steps[i].inertia.as_ref()?;
+                    let r = &kin.rot0[i + 1];
+                    let (alpha_i, omega_i) = (r.tr_mul_vec(alpha), r.tr_mul_vec(omega));
+                    Some((
+                        r.mul_vec(&local.mul_vec(&alpha_i)),
+                        r.mul_vec(&omega_i.cross(&local.mul_vec(&omega_i))),
+                    ))
+                }),
+            )
+        }
+    }
 }

@@ -75,6 +75,48 @@ pub struct NewtonEuler<S> {
 
 /// Runs both recursions.
 pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
+    run(steps, &book_euler(steps), Moment::Book)
+}
+
+/// The Euler term with [`Step::inertia`].
+fn book_euler<'a, S: Scalar>(steps: &'a [Step<S>]) -> Box<EulerTerm<'a, S>> {
+    Box::new(move |i, alpha, omega| {
+        let inertia = steps[i].inertia.as_ref()?;
+        Some((inertia.mul_vec(alpha), omega.cross(&inertia.mul_vec(omega))))
+    })
+}
+
+/// How the moment `n_i` is grouped.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Moment {
+    /// As in the book: `n_{i+1} − f_i × r_{J,ci} + f_{i+1} × (r_{i,ci} − s_{i+1})` (rotated).
+    Book,
+    /// With `f_i = f_{i+1} + m_i (a_c,i − g_i)` substituted:
+    /// `n_{i+1} − f_{i+1} × (r_{J,i} + s_{i+1}) − m_i (a_c,i − g_i) × r_{J,ci}`. The same value, with
+    /// one cross product of the large accumulated force instead of two.
+    Split,
+}
+
+/// The two parts `(I_i α_i, ω_i × (I_i ω_i))` of the Euler term of link `i` (0-based), from `i`, `α_i`
+/// and `ω_i`; `None` when the link has no inertia term.
+pub type EulerTerm<'a, S> = dyn Fn(usize, &Vec3<S>, &Vec3<S>) -> Option<(Vec3<S>, Vec3<S>)> + 'a;
+
+/// Runs both recursions for exact scalars, with the Euler term of each link given by `euler` (`None`:
+/// with [`Step::inertia`]), so a caller can evaluate it in whatever frame is cheapest. The moment is
+/// grouped as `n_{i+1} − f_{i+1} × (r_{J,i} + s_{i+1}) − m_i (a_c,i − g_i) × r_{J,ci}` (all rotated
+/// into frame `i`), the book's `n_i` with `f_i = f_{i+1} + m_i (a_c,i − g_i)` substituted: the same
+/// polynomials as [`recurse`], with one cross product of the large accumulated force instead of two.
+pub fn recurse_with<S: Scalar>(
+    steps: &[Step<S>],
+    euler: Option<&EulerTerm<'_, S>>,
+) -> NewtonEuler<S> {
+    match euler {
+        Some(e) => run(steps, e, Moment::Split),
+        None => run(steps, &book_euler(steps), Moment::Split),
+    }
+}
+
+fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -> NewtonEuler<S> {
     let n = steps.len();
     let (mut omega, mut alpha, mut a_c, mut a_e, mut g) = (
         Vec::with_capacity(n),
@@ -140,16 +182,20 @@ pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
             ),
             None => (Vec3::zero(), Vec3::zero(), Vec3::zero()),
         };
-        let fi = f_here.add(&a_c[i].sub(&g[i]).scale(&st.mass));
+        let own = a_c[i].sub(&g[i]).scale(&st.mass);
+        let fi = f_here.add(&own);
         if first_revolute.is_some_and(|r| i >= r) {
             let r_jc = st.r_joint_origin.add(&st.r_origin_com);
-            let mut ni = n_here
-                .sub(&fi.cross(&r_jc))
-                .add(&f_here.cross(&st.r_origin_com.sub(&s_next)));
-            if let Some(inertia) = &st.inertia {
-                ni = ni
-                    .add(&inertia.mul_vec(&alpha[i]))
-                    .add(&omega[i].cross(&inertia.mul_vec(&omega[i])));
+            let mut ni = match moment {
+                Moment::Book => n_here
+                    .sub(&fi.cross(&r_jc))
+                    .add(&f_here.cross(&st.r_origin_com.sub(&s_next))),
+                Moment::Split => n_here
+                    .sub(&f_here.cross(&st.r_joint_origin.add(&s_next)))
+                    .sub(&own.cross(&r_jc)),
+            };
+            if let Some((i_alpha, gyro)) = euler(i, &alpha[i], &omega[i]) {
+                ni = ni.add(&i_alpha).add(&gyro);
             }
             n_next = ni.clone();
             moments[i] = Some(ni);

@@ -25,6 +25,15 @@ pub trait Scalar: Clone + std::fmt::Debug {
     fn one() -> Self {
         Self::from_rational(&Rational::one())
     }
+    /// `a₀b₀ + a₁b₁ + a₂b₂`, added left to right (a polynomial collects all three products in one
+    /// pass instead).
+    fn dot3(a: [&Self; 3], b: [&Self; 3]) -> Self {
+        a[0].mul(b[0]).add(&a[1].mul(b[1])).add(&a[2].mul(b[2]))
+    }
+    /// `a b − c d`.
+    fn mul_sub(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
+        a.mul(b).sub(&c.mul(d))
+    }
 }
 
 impl Scalar for Poly {
@@ -48,6 +57,16 @@ impl Scalar for Poly {
     }
     fn is_exact_zero(&self) -> bool {
         self.is_zero()
+    }
+    fn dot3(a: [&Self; 3], b: [&Self; 3]) -> Self {
+        Poly::sum_of_products(&[
+            (a[0], b[0], false),
+            (a[1], b[1], false),
+            (a[2], b[2], false),
+        ])
+    }
+    fn mul_sub(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
+        Poly::sum_of_products(&[(a, b, false), (c, d, true)])
     }
 }
 

@@ -40,19 +40,19 @@ impl<S: Scalar> Vec3<S> {
 
     /// `self · o`.
     pub fn dot(&self, o: &Self) -> S {
-        self.0[0]
-            .mul(&o.0[0])
-            .add(&self.0[1].mul(&o.0[1]))
-            .add(&self.0[2].mul(&o.0[2]))
+        S::dot3(
+            [&self.0[0], &self.0[1], &self.0[2]],
+            [&o.0[0], &o.0[1], &o.0[2]],
+        )
     }
 
     /// `self × o`.
     pub fn cross(&self, o: &Self) -> Self {
         let (a, b) = (&self.0, &o.0);
         Vec3([
-            a[1].mul(&b[2]).sub(&a[2].mul(&b[1])),
-            a[2].mul(&b[0]).sub(&a[0].mul(&b[2])),
-            a[0].mul(&b[1]).sub(&a[1].mul(&b[0])),
+            S::mul_sub(&a[1], &b[2], &a[2], &b[1]),
+            S::mul_sub(&a[2], &b[0], &a[0], &b[2]),
+            S::mul_sub(&a[0], &b[1], &a[1], &b[0]),
         ])
     }
 
@@ -84,21 +84,17 @@ impl<S: Scalar> Mat3<S> {
 
     /// `self · v`.
     pub fn mul_vec(&self, v: &Vec3<S>) -> Vec3<S> {
+        let v = [&v.0[0], &v.0[1], &v.0[2]];
         Vec3(std::array::from_fn(|i| {
-            self.0[i][0]
-                .mul(&v.0[0])
-                .add(&self.0[i][1].mul(&v.0[1]))
-                .add(&self.0[i][2].mul(&v.0[2]))
+            S::dot3([&self.0[i][0], &self.0[i][1], &self.0[i][2]], v)
         }))
     }
 
     /// `selfᵀ · v`.
     pub fn tr_mul_vec(&self, v: &Vec3<S>) -> Vec3<S> {
+        let v = [&v.0[0], &v.0[1], &v.0[2]];
         Vec3(std::array::from_fn(|i| {
-            self.0[0][i]
-                .mul(&v.0[0])
-                .add(&self.0[1][i].mul(&v.0[1]))
-                .add(&self.0[2][i].mul(&v.0[2]))
+            S::dot3([&self.0[0][i], &self.0[1][i], &self.0[2][i]], v)
         }))
     }
 
@@ -106,10 +102,10 @@ impl<S: Scalar> Mat3<S> {
     pub fn mul(&self, o: &Self) -> Self {
         Mat3(std::array::from_fn(|i| {
             std::array::from_fn(|j| {
-                self.0[i][0]
-                    .mul(&o.0[0][j])
-                    .add(&self.0[i][1].mul(&o.0[1][j]))
-                    .add(&self.0[i][2].mul(&o.0[2][j]))
+                S::dot3(
+                    [&self.0[i][0], &self.0[i][1], &self.0[i][2]],
+                    [&o.0[0][j], &o.0[1][j], &o.0[2][j]],
+                )
             })
         }))
     }
