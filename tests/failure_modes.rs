@@ -461,7 +461,7 @@ fn chart_has_every_method_for_both_robots_with_round_off_errors_for_the_symbolic
                 .collect()
         };
         assert_eq!(of("exact")[0].max_rel_error, 0.0);
-        for m in ["tape", "nested", "newton-euler"] {
+        for m in ["tape", "program", "nested", "newton-euler"] {
             let p = of(m);
             assert_eq!(p.len(), 1, "{robot} {m}");
             assert!(
@@ -477,5 +477,5 @@ fn chart_has_every_method_for_both_robots_with_round_off_errors_for_the_symbolic
         // Every finite-difference step is worse than the symbolic τ.
         assert!(fd.iter().all(|p| p.max_rel_error > 1e-9), "{robot}");
     }
-    assert_eq!(points.len(), 2 * (4 + steps().len()));
+    assert_eq!(points.len(), 2 * (5 + steps().len()));
 }
