@@ -136,6 +136,8 @@ fn quick_bench_writes_consistent_results() {
             "ne-compact",
             "proof",
             "el+ne+proof",
+            "proof-body",
+            "el+ne+proof-body",
             "eval-tau",
             "eval-tau-program",
             "eval-d",

@@ -76,7 +76,8 @@ pub struct Ratio {
     pub robot: String,
     /// The peer method.
     pub peer: String,
-    /// symdyn's seconds (`el+ne+proof`).
+    /// symdyn's seconds (`el+ne+proof-body`: Euler–Lagrange, Newton–Euler in body frames and the
+    /// proof that they agree, D symmetric, Ḋ − 2C skew; else `el+ne+proof`).
     pub symdyn: f64,
     /// The peer's seconds.
     pub peer_seconds: f64,
@@ -88,7 +89,8 @@ pub struct Ratio {
 pub fn ratios(records: &[Record]) -> Vec<Ratio> {
     let mut out = Vec::new();
     for (robot, _) in robots_in(records, &PEERS) {
-        let Some(sd) = find(records, &robot, "el+ne+proof")
+        let Some(sd) = find(records, &robot, "el+ne+proof-body")
+            .or_else(|| find(records, &robot, "el+ne+proof"))
             .filter(|r| r.status == Status::Ok)
             .and_then(|r| r.seconds)
         else {
@@ -155,18 +157,28 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
     }
 
     s.push_str("## Derivation\n\nWall time of one derivation in a fresh process (kinematics included, parsing not): ");
-    s.push_str("Euler–Lagrange (D, Christoffel symbols, C, g, τ), Newton–Euler (τ, body frames), the proof ");
-    s.push_str("(`dynamics::check`, which also derives Newton–Euler in the inertial frame), and the whole proof ");
-    s.push_str("process (parse, both derivations, proof). Size of τ: terms of the expanded form; operations = ");
+    s.push_str("Euler–Lagrange (D, Christoffel symbols, C, g, τ), Newton–Euler (τ, body frames), the proof in body ");
+    s.push_str("frames (EL = NE, D symmetric, Ḋ − 2C skew, by the exact zero test) alone and with both derivations ");
+    s.push_str("(from `Derivation::new`), and the whole of `symdyn check` (which also derives Newton–Euler in the ");
+    s.push_str(
+        "inertial frame and proves it equal). Size of τ: terms of the expanded form; operations = ",
+    );
     s.push_str("multiplications + additions of the printed canonical form (x^n as n−1 multiplications; see ");
     s.push_str(
         "`symdyn::bench::size`). Peak memory: the largest VmHWM of the measuring processes.\n\n",
     );
     s.push_str("The compact Newton–Euler (`derive --compact`, `dynamics::ne_compact`) is τ as a program of named ");
     s.push_str("intermediates, each exact and canonical; its size is its lines and their operations (no sharing counted).\n\n");
-    s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | proof | EL+NE+proof | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS |\n");
-    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
-    let deriv = ["el", "ne", "proof", "el+ne+proof", "ne-compact"];
+    s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | proof (body) | EL+NE+proof (body) | check (both frames) | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS |\n");
+    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    let deriv = [
+        "el",
+        "ne",
+        "proof-body",
+        "el+ne+proof-body",
+        "el+ne+proof",
+        "ne-compact",
+    ];
     for (robot, n) in robots_in(records, &deriv) {
         let el = find(records, &robot, "el");
         let size = el
@@ -190,10 +202,11 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             .map(|r| format!("{} / {}", opt(r.terms), opt(r.ops)))
             .unwrap_or_else(|| "–".into());
         s.push_str(&format!(
-            "| {robot} | {n} | {} | {} | {} | {} | {} | {} | {} | {compact_size} | {rss} |\n",
+            "| {robot} | {n} | {} | {} | {} | {} | {} | {} | {} | {} | {compact_size} | {rss} |\n",
             cell(el),
             cell(find(records, &robot, "ne")),
-            cell(find(records, &robot, "proof")),
+            cell(find(records, &robot, "proof-body")),
+            cell(find(records, &robot, "el+ne+proof-body")),
             cell(find(records, &robot, "el+ne+proof")),
             size.0,
             size.1,
@@ -251,15 +264,19 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("\n## Peers\n\nThe plain Euler–Lagrange derivation (transforms, Jacobians, D, Christoffel symbols, g) ");
         s.push_str("by `bench/peers/el_peer.py` with SymPy, SymPy + trigsimp and SymEngine; seconds are the peer's own ");
         s.push_str("(derivation only, no interpreter start-up). The factor in parentheses is peer time / symdyn time ");
-        s.push_str("(symdyn: Euler–Lagrange + Newton–Euler + proof in one process), measured in the same run. The peers' ");
-        s.push_str("operation counts are their own.\n\n");
-        s.push_str("| robot | n | symdyn EL | symdyn EL+NE+proof | SymPy | SymPy + trigsimp | SymEngine | peer ops (SymPy / trigsimp / SymEngine) |\n");
-        s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        s.push_str("(symdyn: D, Christoffel symbols, C, g by Euler–Lagrange, τ by Newton–Euler in body frames, all in ");
+        s.push_str("canonical form, and the proof that they agree, that D is symmetric and Ḋ − 2C skew, in one process), ");
+        s.push_str("measured in the same run; `symdyn check` also derives and compares Newton–Euler in the inertial frame ");
+        s.push_str("(last symdyn column). The peers' results are unsimplified (except trigsimp's D); their operation ");
+        s.push_str("counts are their own.\n\n");
+        s.push_str("| robot | n | symdyn EL | symdyn EL+NE+proof | symdyn check (both frames) | SymPy | SymPy + trigsimp | SymEngine | peer ops (SymPy / trigsimp / SymEngine) |\n");
+        s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
         let rs = ratios(records);
         for (robot, n) in peer_robots {
             let mut row = format!(
-                "| {robot} | {n} | {} | {} |",
+                "| {robot} | {n} | {} | {} | {} |",
                 cell(find(records, &robot, "el")),
+                cell(find(records, &robot, "el+ne+proof-body")),
                 cell(find(records, &robot, "el+ne+proof"))
             );
             let mut ops = Vec::new();

@@ -157,7 +157,7 @@ fn last_line(s: &str) -> String {
 /// The record names a method's child produces.
 fn record_methods(m: Method) -> Vec<&'static str> {
     match m {
-        Method::Proof => vec!["proof", "el+ne+proof"],
+        Method::Proof => vec!["proof", "el+ne+proof", "proof-body", "el+ne+proof-body"],
         _ => vec![m.name()],
     }
 }
@@ -450,7 +450,7 @@ fn scaling_points(records: &[Record]) -> (Vec<Point>, Vec<String>) {
         ("el", "Euler–Lagrange"),
         ("ne", "Newton–Euler"),
         ("ne-compact", "Newton–Euler, compact"),
-        ("proof", "proof"),
+        ("el+ne+proof-body", "EL + NE + proof"),
         ("sympy", "SymPy"),
         ("sympy+trigsimp", "SymPy + trigsimp"),
         ("symengine", "SymEngine"),

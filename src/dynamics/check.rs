@@ -29,12 +29,24 @@ fn claim(statement: &str, failures: Vec<String>) -> Claim {
     }
 }
 
-/// Proves the claims for a derivation.
+/// Proves the claims for a derivation: Euler–Lagrange against Newton–Euler in both frames, `D`
+/// symmetric, `Ḋ − 2C` skew-symmetric.
 pub fn check(der: &Derivation) -> Vec<Claim> {
+    check_frames(der, &[Frame::Body, Frame::Inertial])
+}
+
+/// [`check`] with Newton–Euler derived (and compared) only in the given frames.
+pub fn check_frames(der: &Derivation, frames: &[Frame]) -> Vec<Claim> {
+    let mut claims: Vec<Claim> = frames.iter().map(|&f| agreement(der, f)).collect();
+    claims.extend(identities(der));
+    claims
+}
+
+/// The claim that Euler–Lagrange and Newton–Euler in `frame` give identical equations.
+pub fn agreement(der: &Derivation, frame: Frame) -> Claim {
     let el = der.lagrange();
     let n = der.robot().dof();
-    let mut claims = Vec::new();
-    for frame in [Frame::Body, Frame::Inertial] {
+    {
         let ne = der.newton_euler(frame);
         let bad: Vec<String> = (0..n)
             .filter(|&k| !el.tau[k].sub(&ne.tau[k]).is_zero())
@@ -48,8 +60,15 @@ pub fn check(der: &Derivation) -> Vec<Claim> {
                 "inertial frame"
             }
         );
-        claims.push(claim(&what, bad));
+        claim(&what, bad)
     }
+}
+
+/// The identities of the Euler–Lagrange quantities: `D(q)` symmetric, `Ḋ − 2C` skew-symmetric.
+pub fn identities(der: &Derivation) -> Vec<Claim> {
+    let el = der.lagrange();
+    let n = der.robot().dof();
+    let mut claims = Vec::new();
     let mut asym = Vec::new();
     for k in 0..n {
         for j in 0..k {
