@@ -124,20 +124,29 @@ impl Lagrange {
         if d_constant {
             facts.push(Fact::ConstantMassMatrix);
         } else {
-            // ∂D/∂q_i, only for the q_i that D depends on.
+            // ∂D/∂q_i, for the upper triangle only (D is symmetric, so is each ∂D/∂q_i):
+            // `dd[i][a][b - a]` is ∂d_ab/∂q_i for a ≤ b.
             let dd: Vec<Vec<Vec<Poly>>> = qs
                 .iter()
                 .map(|q| {
                     d.iter()
-                        .map(|row| row.iter().map(|e| poly_diff(e, q)).collect())
+                        .enumerate()
+                        .map(|(a, row)| row[a..].iter().map(|e| poly_diff(e, q)).collect())
                         .collect()
                 })
                 .collect();
+            let dd_at = |i: usize, a: usize, b: usize| -> &Poly {
+                let (a, b) = if a <= b { (a, b) } else { (b, a) };
+                &dd[i][a][b - a]
+            };
             let half = Rational::new(1, 2).expect("non-zero");
             for i in 0..n {
                 for j in i..n {
                     for k in 0..n {
-                        let c = dd[i][k][j].add(&dd[j][k][i]).sub(&dd[k][i][j]).scale(&half);
+                        let c = dd_at(i, k, j)
+                            .add(dd_at(j, k, i))
+                            .sub(dd_at(k, i, j))
+                            .scale(&half);
                         christoffel[j][i][k] = c.clone();
                         christoffel[i][j][k] = c;
                     }
