@@ -189,10 +189,25 @@ impl Lagrange {
             })
             .collect();
         let k = Poly::sum(&k_parts);
+        // Σ_j c_kj q̇_j = Σ_ij c_ijk q̇_i q̇_j = Σ_i c_iik q̇_i² + Σ_{i<j} 2 c_ijk q̇_i q̇_j (c_ijk = c_jik):
+        // one product per unordered pair, and no two products share a monomial (no c_ijk contains a
+        // q̇), so the sum only merges.
+        let two = Rational::int(2);
+        let rate_pairs: Vec<(usize, usize, Poly)> = (0..n)
+            .flat_map(|i| (i..n).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let r = qds[i].mul(&qds[j]);
+                (i, j, if i == j { r } else { r.scale(&two) })
+            })
+            .collect();
         let tau = (0..n)
             .map(|k| {
                 let mut parts: Vec<Poly> = (0..n).map(|j| d[k][j].mul(&qdds[j])).collect();
-                parts.extend((0..n).map(|j| c[k][j].mul(&qds[j])));
+                parts.extend(
+                    rate_pairs
+                        .iter()
+                        .map(|(i, j, r)| christoffel[*i][*j][k].mul(r)),
+                );
                 parts.push(g[k].clone());
                 Poly::sum(&parts)
             })
