@@ -170,14 +170,17 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
     let mut f = vec![Vec3::zero(); n];
     let mut moments: Vec<Option<Vec3<S>>> = vec![None; n];
     let mut tau = vec![S::zero(); n];
-    let (mut f_next, mut n_next) = (Vec3::<S>::zero(), Vec3::<S>::zero());
+    let zero = Vec3::<S>::zero();
     for i in (0..n).rev() {
         let st = &steps[i];
         // Quantities of link i+1 rotated into the working frame of link i.
+        // (f and the moments of link i+1 are read in place: no copy of the large accumulated
+        // vectors; a link without a moment has none above it either, so its moment is zero.)
         let (f_here, n_here, s_next) = match steps.get(i + 1) {
             Some(next) => (
-                next.rot_in.tr_mul_vec(&f_next),
-                next.rot_in.tr_mul_vec(&n_next),
+                next.rot_in.tr_mul_vec(&f[i + 1]),
+                next.rot_in
+                    .tr_mul_vec(moments[i + 1].as_ref().unwrap_or(&zero)),
                 next.rot_in.tr_mul_vec(&next.s),
             ),
             None => (Vec3::zero(), Vec3::zero(), Vec3::zero()),
@@ -197,7 +200,6 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             if let Some((i_alpha, gyro)) = euler(i, &alpha[i], &omega[i]) {
                 ni = ni.add(&i_alpha).add(&gyro);
             }
-            n_next = ni.clone();
             moments[i] = Some(ni);
         }
         tau[i] = if st.revolute {
@@ -208,7 +210,6 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             fi.dot(&st.axis)
         }
         .mul(&st.rate);
-        f_next = fi.clone();
         f[i] = fi;
     }
     NewtonEuler {
