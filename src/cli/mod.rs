@@ -115,7 +115,7 @@ pub enum Command {
         #[arg(long)]
         quick: bool,
         /// The output directory.
-        #[arg(long, default_value = "docs/bench")]
+        #[arg(long, default_value = "docs")]
         out: String,
         /// Also run the Python peers (bench/peers/el_peer.py in a virtual environment).
         #[arg(long)]
@@ -145,7 +145,7 @@ pub enum Command {
         /// The robot: an example name or chain-N.
         #[arg(long)]
         robot: String,
-        /// The method: el, ne, proof, eval-tau, eval-d, eval-ne-numeric.
+        /// The method: el, ne, ne-compact, proof, eval-tau, eval-tau-program, eval-d, eval-ne-numeric.
         #[arg(long)]
         method: String,
         /// The least time of an evaluation loop, seconds.
