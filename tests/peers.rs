@@ -14,10 +14,11 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::Command;
 use symdyn::algebra::Symbol;
+use symdyn::bench::measure::{random_parameters, Rng};
 use symdyn::bench::peer::robot_json;
 use symdyn::bench::RobotSpec;
 use symdyn::dynamics::{Derivation, Robot};
-use symdyn::numeric::{compile, robot_parameters};
+use symdyn::numeric::compile;
 
 fn manifest() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -45,20 +46,6 @@ fn python() -> Option<PathBuf> {
         py.display()
     );
     None
-}
-
-/// A deterministic generator (splitmix64) of numbers in `[lo, hi)`.
-struct Rng(u64);
-
-impl Rng {
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
-    }
 }
 
 /// symdyn's D(q) (row by row) and g(q) at `params` and `q`, from the derived expressions.
@@ -147,20 +134,10 @@ fn sympy_and_symengine_derive_the_same_d_and_g_as_symdyn() {
     for n in 1..=4 {
         cases.push((RobotSpec::Chain(n), &["sympy", "symengine"]));
     }
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     for (spec, engines) in cases {
         let robot = spec.robot().unwrap();
-        let params: HashMap<Symbol, f64> = robot_parameters(&robot)
-            .into_iter()
-            .map(|s| {
-                let v = if s == Symbol::new("g") {
-                    9.81
-                } else {
-                    rng.range(0.5, 1.5)
-                };
-                (s, v)
-            })
-            .collect();
+        let params = random_parameters(&robot, &mut rng);
         let q: Vec<f64> = (0..robot.dof()).map(|_| rng.range(-3.0, 3.0)).collect();
         let (d, g) = symdyn_d_g(&robot, &params, &q);
         for engine in engines {
