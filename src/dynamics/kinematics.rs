@@ -59,7 +59,8 @@ fn vec_of(e: &[Expr; 3]) -> Vec3<Poly> {
 }
 
 /// The local frame of joint `i` (1-based) of the robot.
-fn joint_frame(robot: &Robot, i: usize) -> JointFrame {
+/// Joint `i`'s local geometry (1-based) from its DH row, in the robot's convention.
+pub(crate) fn joint_frame(robot: &Robot, i: usize) -> JointFrame {
     let j = &robot.joints[i - 1];
     let (ct, st) = (p(&Expr::cos(&j.theta)), p(&Expr::sin(&j.theta)));
     let (ca, sa) = (p(&Expr::cos(&j.alpha)), p(&Expr::sin(&j.alpha)));

@@ -44,10 +44,10 @@
 //! Substituting the names back gives exactly `Derivation::newton_euler(Frame::Body).tau`
 //! ([`CompactProgram::expand`]; the tests prove it with the exact zero test).
 
-use super::model::{Convention, JointKind, ModelError, Robot};
+use super::kinematics::{joint_frame, JointFrame};
+use super::model::{JointKind, ModelError, Robot};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::atom::AtomId;
-use crate::algebra::calculus::poly_diff;
 use crate::algebra::poly::Mono;
 use crate::algebra::{eval_f64, to_poly, EvalError, Expr, Poly, Rational, Symbol};
 use std::collections::{HashMap, HashSet};
@@ -209,69 +209,6 @@ impl Builder {
     }
 }
 
-/// One joint's local geometry, in frame `i − 1` (as [`super::kinematics`] builds it).
-struct Local {
-    revolute: bool,
-    /// `R_{i−1}^i`.
-    rot: Mat3<Poly>,
-    /// `o_i` in frame `i − 1`.
-    origin: Vec3<Poly>,
-    /// The point where joint `i` acts, in frame `i − 1`.
-    joint_point: Vec3<Poly>,
-    /// The joint axis in frame `i`.
-    axis: Vec3<Poly>,
-    /// `∂θ_i/∂q_i` or `∂d_i/∂q_i`.
-    rate: Poly,
-}
-
-fn local(robot: &Robot, i: usize) -> Local {
-    let j = &robot.joints[i - 1];
-    let (ct, st) = (to_poly(&Expr::cos(&j.theta)), to_poly(&Expr::sin(&j.theta)));
-    let (ca, sa) = (to_poly(&Expr::cos(&j.alpha)), to_poly(&Expr::sin(&j.alpha)));
-    let (a, d) = (to_poly(&j.a), to_poly(&j.d));
-    let q = Symbol::q(i as u32);
-    let revolute = j.kind == JointKind::Revolute;
-    let rate = if revolute {
-        poly_diff(&to_poly(&j.theta), &q)
-    } else {
-        poly_diff(&d, &q)
-    };
-    let z = Poly::zero;
-    match robot.convention {
-        Convention::Standard => {
-            let rot = Mat3([
-                [ct.clone(), st.neg().mul(&ca), st.mul(&sa)],
-                [st.clone(), ct.mul(&ca), ct.neg().mul(&sa)],
-                [z(), sa.clone(), ca.clone()],
-            ]);
-            let axis = rot.tr_mul_vec(&Vec3::unit(2));
-            Local {
-                revolute,
-                origin: Vec3([a.mul(&ct), a.mul(&st), d]),
-                rot,
-                joint_point: Vec3::zero(),
-                axis,
-                rate,
-            }
-        }
-        Convention::Modified => {
-            let rot = Mat3([
-                [ct.clone(), st.neg(), z()],
-                [ca.mul(&st), ca.mul(&ct), sa.neg()],
-                [sa.mul(&st), sa.mul(&ct), ca.clone()],
-            ]);
-            Local {
-                revolute,
-                origin: Vec3([a.clone(), sa.neg().mul(&d), ca.mul(&d)]),
-                rot,
-                joint_point: Vec3([a, z(), z()]),
-                axis: Vec3::unit(2),
-                rate,
-            }
-        }
-    }
-}
-
 /// `S(v)`, the matrix of `v × ·`.
 fn skew(v: &Vec3<Poly>) -> Mat3<Poly> {
     let [x, y, z] = &v.0;
@@ -298,7 +235,7 @@ impl CompactProgram {
         robot.validate()?;
         let n = robot.dof();
         let mut b = Builder::new(robot);
-        let locals: Vec<Local> = (1..=n).map(|i| local(robot, i)).collect();
+        let locals: Vec<JointFrame> = (1..=n).map(|i| joint_frame(robot, i)).collect();
         let two = Poly::int(2);
 
         // Forward: ω, α, U, the accelerations less gravity.
@@ -310,7 +247,7 @@ impl CompactProgram {
         let (mut omega, mut alpha, mut a_c) = (Vec::new(), Vec::new(), Vec::new());
         for (idx, jf) in locals.iter().enumerate() {
             let i = idx + 1;
-            any_revolute |= jf.revolute;
+            any_revolute |= jf.kind == JointKind::Revolute;
             rotates.push(any_revolute);
             let rt = jf.rot.transpose();
             let (qd, qdd) = (
@@ -319,11 +256,11 @@ impl CompactProgram {
             );
             let w0 = rt.mul_vec(&w_prev);
             let wd0 = rt.mul_vec(&wd_prev);
-            let (w, wd) = if jf.revolute {
-                let w = b.vec(w0.add(&jf.axis.scale(&qd)), &format!("w{i}"));
+            let (w, wd) = if jf.kind == JointKind::Revolute {
+                let w = b.vec(w0.add(&jf.axis_local.scale(&qd)), &format!("w{i}"));
                 let wd = wd0
-                    .add(&jf.axis.scale(&qdd))
-                    .add(&w.cross(&jf.axis.scale(&qd)));
+                    .add(&jf.axis_local.scale(&qdd))
+                    .add(&w.cross(&jf.axis_local.scale(&qd)));
                 (w, b.vec(wd, &format!("wd{i}")))
             } else {
                 (b.vec(w0, &format!("w{i}")), b.vec(wd0, &format!("wd{i}")))
@@ -334,10 +271,10 @@ impl CompactProgram {
             } else {
                 rt.mul_vec(&ae_prev.add(&u_prev.mul_vec(&jf.joint_point)))
             };
-            if !jf.revolute {
+            if jf.kind != JointKind::Revolute {
                 aj = aj
-                    .add(&w.cross(&jf.axis.scale(&qd)).scale(&two))
-                    .add(&jf.axis.scale(&qdd));
+                    .add(&w.cross(&jf.axis_local.scale(&qd)).scale(&two))
+                    .add(&jf.axis_local.scale(&qdd));
             }
             let aj = b.vec(aj, &format!("aj{i}"));
             let s2 = skew(&w);
@@ -395,10 +332,10 @@ impl CompactProgram {
             } else {
                 None
             };
-            tau[idx] = if jf.revolute {
-                moment.map_or_else(Poly::zero, |m| m.dot(&jf.axis))
+            tau[idx] = if jf.kind == JointKind::Revolute {
+                moment.map_or_else(Poly::zero, |m| m.dot(&jf.axis_local))
             } else {
-                fi.dot(&jf.axis)
+                fi.dot(&jf.axis_local)
             }
             .mul(&jf.rate);
             f_next = fi;
