@@ -24,16 +24,7 @@ pub fn program(p: &CompactProgram, inputs: &[String], style: Style) -> String {
     for (t, u) in p.tau.iter().zip(inputs) {
         lines.push(line(&Expr::sym(Symbol::new(u)), t, style));
     }
-    match style {
-        Style::Latex => {
-            let body: Vec<String> = lines.iter().map(|(l, r)| format!("  {l} &= {r}")).collect();
-            format!(
-                "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
-                body.join(" \\\\\n")
-            )
-        }
-        Style::Text | Style::Ascii => lines.iter().map(|(l, r)| format!("{l} = {r}\n")).collect(),
-    }
+    super::equalities(&lines, style)
 }
 
 /// The program as JSON: `{"robot", "method": "newton-euler-compact", "frame": "body",

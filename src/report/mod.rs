@@ -46,6 +46,11 @@ pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
             (print::sum_to_string(&lhs_terms(t), style), input)
         })
         .collect();
+    equalities(&lines, style)
+}
+
+/// `left = right` lines: one per line in text and ASCII, a LaTeX `align*` aligned at `=`.
+pub fn equalities(lines: &[(String, String)], style: Style) -> String {
     match style {
         Style::Latex => {
             let body: Vec<String> = lines.iter().map(|(l, r)| format!("  {l} &= {r}")).collect();
