@@ -7,13 +7,10 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let args = <cli::Args as clap::Parser>::parse();
-    match cli::run(args) {
-        Ok(output) => {
-            print!("{output}");
-            ExitCode::SUCCESS
-        }
+    match cli::run(args).and_then(|output| cli::output::stdout(&output)) {
+        Ok(()) | Err(cli::CliError::StdoutClosed) => ExitCode::SUCCESS,
         Err(err) => {
-            eprintln!("{err}");
+            cli::output::stderr_line(&err.to_string());
             ExitCode::from(err.exit_code())
         }
     }

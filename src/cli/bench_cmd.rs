@@ -47,7 +47,7 @@ pub struct BenchArgs {
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> CliError + '_ {
-    move |source| CliError::Io {
+    move |source| CliError::Write {
         path: path.display().to_string(),
         source,
     }

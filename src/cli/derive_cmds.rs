@@ -60,7 +60,7 @@ fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError> {
     let scene =
         parse_scene(&source).map_err(|e| CliError::Input(format!("error: {}", e.render(&name))))?;
     for w in &scene.warnings {
-        eprintln!("warning: {}", w.render(&name));
+        super::output::stderr_line(&w.render(&name));
     }
     Ok((name, scene.robot))
 }

@@ -187,10 +187,10 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
     let known = numeric::robot_parameters(robot);
     for (s, _, _) in &params {
         if !known.contains(s) {
-            eprintln!(
+            super::output::stderr_line(&format!(
                 "warning: --set {}: the scene has no parameter of that name",
                 s.ascii_name()
-            );
+            ));
         }
     }
     let q = vector(required(args.q, "q", what, n)?, "q", n)?;

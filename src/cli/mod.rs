@@ -7,6 +7,7 @@ mod bench_cmd;
 mod derive_cmds;
 mod error;
 mod eval_cmd;
+pub mod output;
 mod repl_cmd;
 mod sheet_cmd;
 
@@ -154,7 +155,8 @@ pub enum Command {
     },
     /// Simplify an expression to its normal form, then tidy it for display.
     Simplify {
-        /// The expression, e.g. "sin(q1)^2 + cos(q1)^2".
+        /// The expression, e.g. "sin(q1)^2 + cos(q1)^2" (it may start with a minus: "-x + y").
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
         #[arg(long)]
@@ -162,7 +164,8 @@ pub enum Command {
     },
     /// Partial derivative(s) with respect to one or more variables, in order.
     Diff {
-        /// The expression.
+        /// The expression (it may start with a minus).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// Variables: parameters (m2), coordinates (q1) or their derivatives (qd1, qdd1).
         #[arg(required = true)]
@@ -173,7 +176,8 @@ pub enum Command {
     },
     /// Total time derivative: q_i depend on time, every other symbol is constant.
     Dt {
-        /// The expression.
+        /// The expression (it may start with a minus).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// Print ASCII.
         #[arg(long)]
@@ -181,7 +185,8 @@ pub enum Command {
     },
     /// Distribute products over sums (sin and cos are left alone).
     Expand {
-        /// The expression.
+        /// The expression (it may start with a minus).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// Print ASCII.
         #[arg(long)]
@@ -189,12 +194,14 @@ pub enum Command {
     },
     /// Print an expression as LaTeX.
     Latex {
-        /// The expression.
+        /// The expression (it may start with a minus).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
     },
     /// Substitute values for symbols: exact when every value is exact, `--float` for f64.
     Subs {
-        /// The expression.
+        /// The expression (it may start with a minus).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// Assignments name=value (values are expressions: 1/2, pi/3, 0.25, l1+l2).
         #[arg(required = true)]

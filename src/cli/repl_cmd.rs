@@ -4,6 +4,7 @@
 //! with its line number, and the exit code is non-zero if any line failed. Only this file reads files
 //! for the REPL (`load FILE`).
 
+use super::output::{stderr_line, stdout_line};
 use super::CliError;
 use std::cell::RefCell;
 use std::io::{BufRead, IsTerminal};
@@ -50,11 +51,13 @@ pub fn repl(scene: Option<&str>) -> Result<String, CliError> {
     let interactive = std::io::stdin().is_terminal();
     if let Some(path) = scene {
         let answer = load(&mut session, path).map_err(CliError::Input)?;
-        for l in answer.lines() {
+        // The first line says what was loaded; the rest are the scene's warnings, which a script
+        // gets on stderr.
+        for (i, l) in answer.lines().enumerate() {
             if interactive {
-                println!("{l}");
-            } else if l.starts_with("warning:") {
-                eprintln!("{l}");
+                stdout_line(l)?;
+            } else if i > 0 {
+                stderr_line(l);
             }
         }
     }
@@ -75,10 +78,10 @@ fn script(mut session: Session) -> Result<String, CliError> {
         match step(&mut session, &line) {
             Step::Skip => {}
             Step::Quit => break,
-            Step::Answer(Ok(a)) => println!("{a}"),
+            Step::Answer(Ok(a)) => stdout_line(&a)?,
             Step::Answer(Err(e)) => {
                 failed += 1;
-                eprintln!("line {}: {e}", n + 1);
+                stderr_line(&format!("line {}: {e}", n + 1));
             }
         }
     }
@@ -135,7 +138,7 @@ fn interactive_loop(session: Session) -> Result<String, CliError> {
     if let Some(h) = &history {
         let _ = editor.load_history(h); // no history yet is normal
     }
-    println!("symdyn REPL: type `help` for the commands, Ctrl-D to leave.");
+    stdout_line("symdyn REPL: type `help` for the commands, Ctrl-D to leave.")?;
     loop {
         match editor.readline("symdyn> ") {
             Ok(line) => {
@@ -145,8 +148,8 @@ fn interactive_loop(session: Session) -> Result<String, CliError> {
                 match step(&mut session.borrow_mut(), &line) {
                     Step::Skip => {}
                     Step::Quit => break,
-                    Step::Answer(Ok(a)) => println!("{a}"),
-                    Step::Answer(Err(e)) => eprintln!("{e}"),
+                    Step::Answer(Ok(a)) => stdout_line(&a)?,
+                    Step::Answer(Err(e)) => stderr_line(&e),
                 }
             }
             Err(ReadlineError::Interrupted) => continue,
@@ -163,7 +166,10 @@ fn interactive_loop(session: Session) -> Result<String, CliError> {
             .map_err(|e| e.to_string())
             .and_then(|()| editor.save_history(h).map_err(|e| e.to_string()));
         if let Err(e) = saved {
-            eprintln!("warning: history not saved to {}: {e}", h.display());
+            stderr_line(&format!(
+                "warning: history not saved to {}: {e}",
+                h.display()
+            ));
         }
     }
     Ok(String::new())

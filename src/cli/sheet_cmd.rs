@@ -60,7 +60,7 @@ pub fn sheet_cmd(
     let Some(path) = output else {
         return Ok(tex);
     };
-    std::fs::write(path, &tex).map_err(|source| CliError::Io {
+    std::fs::write(path, &tex).map_err(|source| CliError::Write {
         path: path.to_string(),
         source,
     })?;
@@ -90,7 +90,7 @@ fn compile(tex: &str, pdf_path: &Path) -> Result<(), CliError> {
         TempDir(std::env::temp_dir().join(format!("symdyn-sheet-{}-{nanos}", std::process::id())));
     let io = |path: &Path| {
         let path = path.display().to_string();
-        move |source| CliError::Io { path, source }
+        move |source| CliError::Write { path, source }
     };
     std::fs::create_dir_all(&dir.0).map_err(io(&dir.0))?;
     let tex_path = dir.0.join("sheet.tex");

@@ -92,7 +92,8 @@ impl Session {
             der.robot().dof()
         );
         for w in &scene.warnings {
-            out.push_str(&format!("\nwarning: {}", w.render(name)));
+            out.push('\n');
+            out.push_str(&w.render(name));
         }
         self.der = der;
         Ok(out)

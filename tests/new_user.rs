@@ -1,0 +1,131 @@
+//! What a new user met first, through the real binary (issue 11, "found when tried as a new user
+//! would" and "the command line's rough edges"): each row is one of those findings, held fixed.
+
+use std::process::{Command, Stdio};
+
+/// Runs `symdyn args` in the crate's directory: stdout, stderr and the exit code.
+fn symdyn(args: &[&str]) -> (String, String, i32) {
+    let out = Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(Stdio::null())
+        .output()
+        .expect("the binary runs");
+    (
+        String::from_utf8(out.stdout).expect("utf-8"),
+        String::from_utf8(out.stderr).expect("utf-8"),
+        out.status.code().unwrap_or(-1),
+    )
+}
+
+/// Expressions and values that start with a minus are expressions, wherever they stand: every algebra
+/// subcommand, before and after its flags.
+#[test]
+fn a_leading_minus_is_an_expression_not_an_option() {
+    let rows: &[(&[&str], &str)] = &[
+        (&["simplify", "-x + y"], "-x + y\n"),
+        (&["simplify", "-x*qd1", "--ascii"], "-x*qd1\n"),
+        (&["simplify", "--ascii", "-x*qd1"], "-x*qd1\n"),
+        (&["diff", "-2*q1", "q1"], "-2\n"),
+        (&["diff", "-2*q1^2", "q1", "--ascii"], "-4*q1\n"),
+        (&["diff", "--ascii", "-2*q1^2", "q1"], "-4*q1\n"),
+        (&["dt", "-q1"], "-q̇1\n"),
+        (&["expand", "-(a+b)^2"], "-a^2 - 2 a b - b^2\n"),
+        (&["latex", "-x"], "-x\n"),
+        (&["subs", "-x", "x=-1"], "1\n"),
+        (&["subs", "x*y", "x=-1", "y=-1/2"], "1/2\n"),
+        (&["subs", "-x*y", "x=1", "y=-2", "--float"], "2\n"),
+        (&["subs", "--float", "-x*y", "x=1", "y=-2"], "2\n"),
+        (&["simplify", "-1"], "-1\n"),
+    ];
+    for (args, want) in rows {
+        let (out, err, code) = symdyn(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert_eq!(&out, want, "{args:?}");
+    }
+    // A flag is still a flag, never an expression or a variable.
+    let (_, err, code) = symdyn(&["simplify", "--ascii"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("<EXPR>"), "{err}");
+}
+
+/// Runs `symdyn args` with stdin `input`, reads `keep` bytes of stdout and closes the pipe, as
+/// `symdyn … | head -c keep` does: stderr and the exit code.
+fn closed_after(args: &[&str], input: &str, keep: usize) -> (String, i32) {
+    use std::io::{Read, Write};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let mut stdin = child.stdin.take().expect("piped stdin");
+    stdin
+        .write_all(input.as_bytes())
+        .expect("stdin takes the script");
+    drop(stdin);
+    let mut head = vec![0; keep];
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    stdout
+        .read_exact(&mut head)
+        .expect("the first bytes arrive");
+    drop(stdout);
+    let out = child.wait_with_output().expect("the binary ends");
+    (
+        String::from_utf8(out.stderr).expect("utf-8"),
+        out.status.code().unwrap_or(-1),
+    )
+}
+
+/// `symdyn … | head -c 10` ends quietly with status 0, both for one output written at the end (the
+/// SCARA sheet, larger than a pipe's buffer, so the write must meet the closed pipe) and for the REPL,
+/// which prints as it answers.
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    let (err, code) = closed_after(&["sheet", "examples/scara.scene"], "", 10);
+    assert_eq!((code, err.as_str()), (0, ""));
+    let script = "D\n".repeat(2000);
+    let (err, code) = closed_after(&["repl", "examples/elbow.scene"], &script, 10);
+    assert_eq!((code, err.as_str()), (0, ""));
+}
+
+/// Each warning says "warning:" once, in `derive` and when the REPL loads a scene; a file that
+/// cannot be written is named with the operating system's reason.
+#[test]
+fn warnings_once_and_unwritable_files_named() {
+    let dir = std::env::temp_dir().join(format!("symdyn-new-user-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let warn = dir.join("warn.scene");
+    std::fs::write(
+        &warn,
+        "joint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=m1 inertia=diag(1,2,3)\n",
+    )
+    .unwrap();
+    let warn = warn.to_str().unwrap();
+    let (_, err, code) = symdyn(&["derive", warn]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(err.matches("warning:").count(), 1, "{err}");
+    assert!(err.starts_with(&format!("{warn}:2:")), "{err}");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .args(["repl", warn])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdin.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.matches("warning:").count(), 1, "{err}");
+    assert!(err.contains('^'), "the warning shows the line: {err}");
+
+    let (out, err, code) = symdyn(&["sheet", "-o", "/nonexistent/x.tex"]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert!(
+        err.contains("cannot write /nonexistent/x.tex: No such file or directory"),
+        "{err}"
+    );
+}
