@@ -129,3 +129,32 @@ fn warnings_once_and_unwritable_files_named() {
         "{err}"
     );
 }
+
+/// What `dt` prints parses back as the same derivative: `q1_d3` is the third derivative of q1 (its
+/// time derivative is the fourth, where a constant's would be 0), in text and in ASCII; an order that
+/// cannot be read is an error, not a parameter.
+#[test]
+fn higher_derivatives_read_back() {
+    let (third, err, code) = symdyn(&["dt", "qdd1"]);
+    assert_eq!((code, third.as_str()), (0, "q1_d3\n"), "{err}");
+    let (fourth, _, _) = symdyn(&["dt", third.trim()]);
+    assert_eq!(fourth, "q1_d4\n");
+    let (ascii, _, _) = symdyn(&["dt", "sin(q1)*qdd2", "--ascii"]);
+    let (back, _, _) = symdyn(&[
+        "simplify",
+        &format!(
+            "{} - ({})",
+            ascii.trim(),
+            "cos(q1)*qd1*qdd2 + sin(q1)*q2_d3"
+        ),
+        "--ascii",
+    ]);
+    assert_eq!(back, "0\n", "{ascii}");
+    let (latex, _, _) = symdyn(&["latex", "q1_d3"]);
+    assert_eq!(latex, "\\dddot{q}_{1}\n");
+    for bad in ["q1_d0", "q1_d255", "q1_d07"] {
+        let (_, err, code) = symdyn(&["simplify", bad]);
+        assert_eq!(code, 1, "{bad}");
+        assert!(err.contains("names a time derivative"), "{bad}: {err}");
+    }
+}

@@ -48,8 +48,17 @@ impl Symbol {
     }
 
     /// Reads `qN`, `qdN`, `qddN` (ASCII) and `q̇N`, `q̈N` (q followed by a combining dot above U+0307 or
-    /// diaeresis U+0308), with `N` a positive integer without leading zeros.
+    /// diaeresis U+0308), with `N` a positive integer without leading zeros, and `qN_dK`, the `K`-th
+    /// time derivative (`K` from 1 to 255, without leading zeros), which is how derivatives of order
+    /// three and more print: `q1_d3`.
     pub fn coord_from_name(name: &str) -> Option<Symbol> {
+        if let Some((coord, order)) = name.split_once("_d") {
+            let Some(Symbol::Coord { index, order: 0 }) = Symbol::coord_from_name(coord) else {
+                return None;
+            };
+            let order: u8 = positive_integer(order)?.try_into().ok()?;
+            return Some(Symbol::Coord { index, order });
+        }
         let rest = name.strip_prefix('q')?;
         let (order, digits) = if let Some(d) = rest.strip_prefix("dd") {
             (2, d)
@@ -62,14 +71,20 @@ impl Symbol {
         } else {
             (0, rest)
         };
-        if digits.is_empty()
-            || digits.starts_with('0')
-            || !digits.bytes().all(|b| b.is_ascii_digit())
-        {
-            return None;
-        }
-        let index: u32 = digits.parse().ok()?;
+        let index = u32::try_from(positive_integer(digits)?).ok()?;
         Some(Symbol::Coord { index, order })
+    }
+
+    /// Whether `name` is spelt as the derivative `qN_dK` of a coordinate, whatever `K` (so that a
+    /// reader can refuse `q1_d0` or `q1_d300` instead of taking them for parameters).
+    pub fn spells_derivative(name: &str) -> bool {
+        name.split_once("_d").is_some_and(|(coord, order)| {
+            matches!(
+                Symbol::coord_from_name(coord),
+                Some(Symbol::Coord { order: 0, .. })
+            ) && !order.is_empty()
+                && order.bytes().all(|b| b.is_ascii_digit())
+        })
     }
 
     /// The parameter's name, or `None` for a coordinate.
@@ -85,7 +100,9 @@ impl Symbol {
         matches!(self, Symbol::Coord { .. })
     }
 
-    /// The time derivative: `Some(q^(k+1))` for a coordinate, `None` for a constant parameter.
+    /// The time derivative: `Some(q^(k+1))` for a coordinate, `None` for a constant parameter. Orders
+    /// end at 255 (`u8`), which stays 255: the parser reads orders up to 254 only, so no derivative of
+    /// what it reads reaches that end.
     pub fn time_derivative(&self) -> Option<Symbol> {
         match self {
             Symbol::Param(_) => None,
@@ -96,8 +113,8 @@ impl Symbol {
         }
     }
 
-    /// The ASCII name the parser reads back: `m1`, `q1`, `qd1`, `qdd1` (higher derivatives `qd3_1`-style
-    /// names do not exist in the grammar, so they are written `q1_d3`, which is only a parameter name).
+    /// The ASCII name the parser reads back: `m1`, `q1`, `qd1`, `qdd1`, and `q1_d3` for the third
+    /// derivative and beyond.
     pub fn ascii_name(&self) -> String {
         match self {
             Symbol::Param(n) => n.to_string(),
@@ -107,6 +124,14 @@ impl Symbol {
             Symbol::Coord { index, order } => format!("q{index}_d{order}"),
         }
     }
+}
+
+/// The value of a decimal numeral from 1 on, without leading zeros (`None` otherwise or beyond `u64`).
+fn positive_integer(digits: &str) -> Option<u64> {
+    if digits.is_empty() || digits.starts_with('0') || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
 }
 
 /// Compares names naturally: runs of digits by value, everything else by character.
@@ -188,10 +213,30 @@ mod tests {
             ("q01", None),
             ("q", None),
             ("qx1", None),
+            ("q1_d3", Some(Symbol::Coord { index: 1, order: 3 })),
+            (
+                "q12_d255",
+                Some(Symbol::Coord {
+                    index: 12,
+                    order: 255,
+                }),
+            ),
+            ("q2_d1", Some(Symbol::qd(2))),
+            ("q1_d0", None),
+            ("q1_d256", None),
+            ("q1_d03", None),
+            ("qd1_d3", None),
+            ("m1_d3", None),
         ];
         for (name, want) in rows {
             assert_eq!(Symbol::coord_from_name(name), want, "{name}");
         }
+        for order in [1, 2, 3, 4, 200, 255] {
+            let s = Symbol::Coord { index: 7, order };
+            assert_eq!(Symbol::coord_from_name(&s.ascii_name()), Some(s));
+        }
+        assert!(Symbol::spells_derivative("q1_d0") && Symbol::spells_derivative("q1_d300"));
+        assert!(!Symbol::spells_derivative("q1_dx") && !Symbol::spells_derivative("m1_d3"));
     }
 
     #[test]

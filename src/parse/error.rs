@@ -55,6 +55,9 @@ pub enum ParseErrorKind {
     /// A number too large to hold exactly.
     #[error("number too large: exact numbers are limited to about 600 digits")]
     NumberTooLarge,
+    /// A name spelt as a derivative `qN_dK` whose order `K` is not from 1 to 254.
+    #[error("`{0}` names a time derivative of a coordinate: its order, after `_d`, is a whole number from 1 to 254 (`q1_d3` is the third derivative of q1)")]
+    DerivativeOrder(String),
     /// More nesting than [`MAX_DEPTH`] levels.
     #[error("expression nested too deeply (more than {MAX_DEPTH} levels of parentheses, signs and powers)")]
     TooDeep,

@@ -12,7 +12,7 @@ use super::error::{ParseError, ParseErrorKind};
 use super::grammar::Rule;
 use super::names::{self, Function};
 use super::MAX_DEPTH;
-use crate::algebra::{AlgebraError, Expr, Kind, Rational};
+use crate::algebra::{AlgebraError, Expr, Kind, Rational, Symbol};
 use pest::iterators::{Pair, Pairs};
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 use std::ops::Range;
@@ -26,6 +26,10 @@ pub(crate) const MAX_NUMBER_BITS: u64 = 2048;
 /// The largest exponent of a result, as `Expr::integer_exponent` allows for an exponent's value:
 /// below it, sums and products of exponents in the core cannot overflow.
 const MAX_EXPONENT: u64 = i32::MAX as u64;
+
+/// The highest derivative order a name `qN_dK` may state: one below the largest order a symbol holds,
+/// so that the time derivative of anything read is still exact.
+const MAX_READ_ORDER: u8 = u8::MAX - 1;
 
 /// The operators' precedence, lowest first, and associativity: stated once, here.
 static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
@@ -297,6 +301,16 @@ fn leaf(pair: Pair<'_, Rule>) -> Lowered {
                 return err(ParseErrorKind::MisplacedDeg);
             } else if names::function(&name).is_some() {
                 return err(ParseErrorKind::FunctionWithoutArgument(name.into_owned()));
+            } else if Symbol::spells_derivative(&name)
+                && !matches!(
+                    Symbol::coord_from_name(&name),
+                    Some(Symbol::Coord {
+                        order: 1..=MAX_READ_ORDER,
+                        ..
+                    })
+                )
+            {
+                return err(ParseErrorKind::DerivativeOrder(name.into_owned()));
             } else {
                 Expr::symbol(&name)
             }

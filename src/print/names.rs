@@ -12,9 +12,9 @@
 //!
 //! Text writes the first two derivatives with a combining dot above (U+0307) or diaeresis (U+0308)
 //! after the `q`, which is what [`Symbol::coord_from_name`] reads back. Derivatives of order three and
-//! more have no such name: both text and ASCII write them `q{index}_d{order}` (as
-//! [`Symbol::ascii_name`] does), which the parser reads as a *parameter* of that name. The equations
-//! of motion never contain them.
+//! more are written `q{index}_d{order}` in text and ASCII (as [`Symbol::ascii_name`] does), which
+//! [`Symbol::coord_from_name`] reads back as the same derivative. The equations of motion never
+//! contain them.
 //!
 //! LaTeX names of parameters, in this order of rules:
 //! 1. A name that starts with a whole Greek letter name (lower case, capitalised, or one of the
