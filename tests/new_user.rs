@@ -158,3 +158,51 @@ fn higher_derivatives_read_back() {
         assert!(err.contains("names a time derivative"), "{bad}: {err}");
     }
 }
+
+/// Writes `text` as `name` in a fresh directory of the test and returns its path.
+fn scene_file(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("symdyn-new-user-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// In a scene a field's value ends at a space outside brackets: `theta=q1 extra` is an error that
+/// says how to write the product, where it used to be read silently as `q1*extra`; operators with
+/// spaces, brackets and `*` are fine, and every example scene still reads.
+#[test]
+fn a_field_value_ends_at_a_space() {
+    let bad = scene_file(
+        "extra.scene",
+        "joint 1 revolute a=0 alpha=0 d=0 theta=q1 extra\nlink 1 mass=m1\n",
+    );
+    let (out, err, code) = symdyn(&["derive", &bad]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert!(
+        err.contains("extra.scene:1:43: a field's value ends at a space"),
+        "{err}"
+    );
+    assert!(err.contains("`theta=q1*extra`"), "{err}");
+    let good = scene_file(
+        "spaces.scene",
+        "joint 1 revolute a=2*l1 alpha=0 d=0 theta=q1 + pi/2\nlink 1 mass=m1*k com=[l1 k, 0, 0]\n",
+    );
+    let (out, err, code) = symdyn(&["derive", &good, "--ascii"]);
+    assert_eq!(code, 0, "{err}");
+    // The centre of mass is l1 (k + 2) from the axis, `a=2*l1` plus `l1 k` (a product inside brackets).
+    let lhs = out.trim().strip_suffix(" = tau1").expect("one equation");
+    let (diff, _, _) = symdyn(&["simplify", &format!("{lhs} - m1*k*(l1*(k+2))^2*qdd1")]);
+    assert_eq!(diff, "0\n", "{out}");
+    for entry in std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/examples")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "scene") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(
+                symdyn::parse::parse_scene(&text).is_ok(),
+                "{}",
+                path.display()
+            );
+        }
+    }
+}

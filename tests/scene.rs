@@ -214,7 +214,7 @@ fn expressions_in_the_dh_table() {
 robot \"θ #1 and offsets\"
 dh modified
 joint 1 revolute  a=0  alpha=-pi/2  d=d1  theta=q1 + pi/2   # comment: θ ∈ ℝ, ünïcödé ✓
-joint 2 prismatic  α=90deg  a=2 l  θ = 0  d =2 q2 - 1
+joint 2 prismatic  α=90deg  a=2*l  θ = 0  d =2q2 - 1
 link 1 mass=m1
 link 2 mass=m2 com=[0, 0, -l/2]
 ";
@@ -380,7 +380,10 @@ fn bad_scenes_are_located_errors() {
         ("joint 1 revolute a=qd1 alpha=0 d=0 theta=q1".to_string(), 1, 20, "contains qd1, but a DH table holds positions"),
         ("joint 1 revolute a=0 alpha=0 d=0 theta=0".to_string(), 1, 40, "joint 1 is revolute, so its `theta` must contain q1"),
         ("joint 1 revolute a=0 alpha=0 d=0 theta=q1^2".to_string(), 1, 40, "must be q1 times a constant plus a constant"),
-        (rr_with_link(2, "link 2 mass=m2 q1"), 4, 13, "the mass of link 2 must not depend on the joint variables, but contains q1"),
+        // A value ends at a space: juxtaposition across one is refused, not read as a product.
+        ("joint 1 revolute a=0 alpha=0 d=0 theta=q1 extra".to_string(), 1, 43, "a field's value ends at a space, so `extra` does not continue `theta=q1`: write a product with `*` (`theta=q1*extra`)"),
+        (rr_with_link(2, "link 2 mass=2 m2"), 4, 15, "so `m2` does not continue `mass=2`"),
+        (rr_with_link(2, "link 2 mass=m2*q1"), 4, 13, "the mass of link 2 must not depend on the joint variables, but contains q1"),
         (rr_with_link(2, "link 2 mass=m2 com=[0, q̇2, 0]"), 4, 24, "the centre of mass of link 2 must not depend on the joint variables, but contains qd2"),
         (rr_with_link(2, "link 2 mass=m2 inertia=diag(1, q1, 1)"), 4, 32, "the inertia of link 2 must not depend"),
         (rr_with_link(2, "link 2 mass=m2 inertia=[[1,0,0],[0,1,0],[0,0,qdd2]]"), 4, 46, "the inertia of link 2"),

@@ -85,6 +85,16 @@ pub enum SceneErrorKind {
         /// What the statement needs.
         hint: &'static str,
     },
+    /// A field's value followed, after a space, by more text that is no field (`theta=q1 extra`).
+    #[error("a field's value ends at a space, so `{next}` does not continue `{key}={value}`: write a product with `*` (`{key}={value}*{next}`), or another field as `key=value`")]
+    SpacedProduct {
+        /// The field's key as written.
+        key: String,
+        /// The value up to the space.
+        value: String,
+        /// The text after the space.
+        next: String,
+    },
     /// A value of the wrong form for its key (a vector where an expression belongs, ...).
     #[error("`{key}` takes {takes}")]
     WrongValue {

@@ -170,6 +170,10 @@ fn fields<'i>(
     let mut out: Vec<FieldPair<'i>> = Vec::new();
     for pair in pairs {
         let Some(f) = field(pair) else { continue };
+        // (An `inertia=` that reads as an expression is refused below, naming the forms it takes.)
+        if let (Value::Expr(value), false) = (&f.value, f.key == "inertia") {
+            spaced_product(at, f.written, value)?;
+        }
         if let Some(first) = out.iter().find(|g| g.key == f.key) {
             let first_column = at.line_column(first.key_span.start);
             return Err(at.error(
@@ -183,6 +187,41 @@ fn fields<'i>(
         out.push(f);
     }
     Ok(out)
+}
+
+/// Refuses a product by juxtaposition across a space at the top level of a field's value: a value
+/// ends at a space outside brackets, so `theta=q1 extra` is not read as `q1*extra` (write the `*`).
+/// Inside parentheses, brackets and calls, and without a space (`2pi`), juxtaposition multiplies as
+/// everywhere else.
+fn spaced_product(at: &At<'_>, key: &str, value: &Pair<'_, Rule>) -> Result<(), SceneError> {
+    let mut previous_end = None;
+    let mut juxtaposed = false;
+    for p in value.clone().into_inner() {
+        match p.as_rule() {
+            Rule::implicit_mul => {
+                juxtaposed = previous_end.is_some_and(|end| p.as_span().start() > end);
+            }
+            Rule::neg | Rule::pos | Rule::add | Rule::sub | Rule::mul | Rule::div | Rule::pow => {
+                juxtaposed = false;
+            }
+            _ => {
+                if juxtaposed {
+                    let before = &at.source[at.offset + value.as_span().start()..]
+                        [..p.as_span().start() - value.as_span().start()];
+                    return Err(at.error(
+                        SceneErrorKind::SpacedProduct {
+                            key: key.to_string(),
+                            value: before.trim_end().to_string(),
+                            next: p.as_str().trim_end().to_string(),
+                        },
+                        span(&p),
+                    ));
+                }
+                previous_end = Some(p.as_span().end());
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A joint as stated, with where.

@@ -16,7 +16,10 @@
 //!
 //! One statement per line; `#` starts a comment that runs to the end of the line; blank lines are
 //! fine. Values are expressions ([`parse_expr`](super::parse_expr)): exact numbers (`0.4318` is
-//! 2159/5000), `90deg`, `pi/2`, `q2 + pi/2`, symbols.
+//! 2159/5000), `90deg`, `pi/2`, `q2 + pi/2`, symbols. A field's value ends at a space outside
+//! brackets unless an operator continues it, so a product in a field is written with `*` (`a=2*l1`):
+//! `theta=q1 extra` is an error, not `q1*extra` (inside brackets, `com=[l1 k, 0, 0]`, juxtaposition
+//! multiplies as in any expression).
 //!
 //! | statement | meaning | if absent |
 //! |---|---|---|
