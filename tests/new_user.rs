@@ -100,14 +100,14 @@ fn warnings_once_and_unwritable_files_named() {
     let warn = dir.join("warn.scene");
     std::fs::write(
         &warn,
-        "joint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=m1 inertia=diag(1,2,3)\n",
+        "gravity [0, 0, -g]\njoint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=m1 inertia=diag(1,2,3)\n",
     )
     .unwrap();
     let warn = warn.to_str().unwrap();
     let (_, err, code) = symdyn(&["derive", warn]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(err.matches("warning:").count(), 1, "{err}");
-    assert!(err.starts_with(&format!("{warn}:2:")), "{err}");
+    assert!(err.starts_with(&format!("{warn}:3:")), "{err}");
     let mut child = Command::new(env!("CARGO_BIN_EXE_symdyn"))
         .args(["repl", warn])
         .stdin(Stdio::piped())
@@ -205,4 +205,54 @@ fn a_field_value_ends_at_a_space() {
             );
         }
     }
+}
+
+/// Silent physics mistakes are said, each with its fix: `alpha=90` without `deg`, a missing `gravity`
+/// line, inertias no body has (negative principal moment, not positive semi-definite, the triangle
+/// inequality broken), a robot without mass; a negative mass is refused.
+#[test]
+fn physics_mistakes_are_said_with_their_fix() {
+    let odd = scene_file(
+        "odd.scene",
+        "joint 1 revolute a=1 alpha=90 d=0 theta=q1\n\
+         joint 2 revolute a=1 alpha=0 d=0 theta=q2\n\
+         link 1 mass=2 inertia=diag(-1, 1, 1)\n\
+         link 2 mass=1 inertia=diag(1, 1, 5)\n",
+    );
+    let (_, err, code) = symdyn(&["derive", &odd]);
+    assert_eq!(code, 0, "warnings, not errors: {err}");
+    for (place, says) in [
+        (":1:28: warning:", "the angle 90 in `alpha` is taken in radians, more than a full turn: did you mean 90deg?"),
+        (":1:1: warning:", "no `gravity` line, so gravity is [0, 0, -g] in frame 0"),
+        (":3:15: warning:", "the inertia of link 1 is not positive semi-definite (I_xx = -1)"),
+        (":4:15: warning:", "link 2 break the triangle inequality (I_xx + I_yy = 2 < I_zz = 5"),
+    ] {
+        let line = err.lines().find(|l| l.contains(says));
+        assert!(line.is_some_and(|l| l.starts_with(&format!("{odd}{place}"))), "{place} {says}\n{err}");
+    }
+    assert_eq!(err.matches("warning:").count(), 4, "{err}");
+    let (json, _, _) = symdyn(&["derive", &odd, "--format", "json"]);
+    assert!(
+        json.contains("did you mean 90deg?") && json.contains("triangle inequality"),
+        "{json}"
+    );
+
+    let empty = scene_file(
+        "empty.scene",
+        "gravity [0, 0, -g]\njoint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=0\n",
+    );
+    let (out, err, code) = symdyn(&["derive", &empty]);
+    assert_eq!((code, out.as_str()), (0, "0 = tau1\n"));
+    assert!(
+        err.contains("every link's mass is 0") && err.contains("give the links their masses"),
+        "{err}"
+    );
+
+    let negative = scene_file(
+        "negative.scene",
+        "gravity [0, 0, -g]\njoint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=-2\n",
+    );
+    let (out, err, code) = symdyn(&["check", &negative]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert!(err.contains("negative.scene:3:13: the mass of link 1 is -2, negative: a mass is at least 0 (write `mass=2`)"), "{err}");
 }

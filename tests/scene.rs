@@ -259,6 +259,7 @@ fn defaults_of_what_a_scene_leaves_out() {
 #[test]
 fn an_inertia_that_never_rotates_is_warned_about() {
     let text = "\
+gravity [0, 0, -g]
 joint 1 prismatic  a=0  alpha=0  d=q1  theta=0
 joint 2 revolute   a=0  alpha=0  d=0   theta=q2
 link 1  mass=m1  inertia=diag(1, 2, 3)
@@ -271,10 +272,10 @@ link 2  mass=m2  inertia=I2
         w.message(),
         "the inertia of link 1 is not used: the link never rotates (only prismatic joints precede it)"
     );
-    assert_eq!((w.line(), w.column()), (3, 18));
+    assert_eq!((w.line(), w.column()), (4, 18));
     assert_eq!(
         w.render("arm.scene"),
-        "arm.scene:3:18: warning: the inertia of link 1 is not used: the link never rotates (only prismatic joints precede it)\n  link 1  mass=m1  inertia=diag(1, 2, 3)\n                   ^^^^^^^^^^^^^^^^^^^^^"
+        "arm.scene:4:18: warning: the inertia of link 1 is not used: the link never rotates (only prismatic joints precede it)\n  link 1  mass=m1  inertia=diag(1, 2, 3)\n                   ^^^^^^^^^^^^^^^^^^^^^"
     );
     // The robot keeps the inertia it was given.
     assert!(scene.robot.links[0].inertia.is_some());
@@ -283,6 +284,20 @@ link 2  mass=m2  inertia=I2
     let warnings = read(&ppp).warnings;
     assert_eq!(warnings.len(), 1);
     assert!(warnings[0].message().contains("link 3"));
+}
+
+/// A scene without a `gravity` line says which gravity it gets and how to state another; with one,
+/// it says nothing.
+#[test]
+fn a_missing_gravity_line_is_warned_about() {
+    let warnings = read(RR).warnings;
+    assert_eq!(warnings.len(), 1);
+    assert_eq!(
+        warnings[0].message(),
+        "the scene has no `gravity` line, so gravity is [0, 0, -g] in frame 0 (along -z_0): state it, e.g. `gravity [0, -g, 0]`, or `gravity [0, 0, 0]` for none"
+    );
+    assert_eq!((warnings[0].line(), warnings[0].column()), (1, 1));
+    assert_eq!(read(&format!("gravity [0, -g, 0]\n{RR}")).warnings, []);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -383,6 +398,7 @@ fn bad_scenes_are_located_errors() {
         // A value ends at a space: juxtaposition across one is refused, not read as a product.
         ("joint 1 revolute a=0 alpha=0 d=0 theta=q1 extra".to_string(), 1, 43, "a field's value ends at a space, so `extra` does not continue `theta=q1`: write a product with `*` (`theta=q1*extra`)"),
         (rr_with_link(2, "link 2 mass=2 m2"), 4, 15, "so `m2` does not continue `mass=2`"),
+        (rr_with_link(2, "link 2 mass=-1/2"), 4, 13, "the mass of link 2 is -1/2, negative: a mass is at least 0 (write `mass=1/2`)"),
         (rr_with_link(2, "link 2 mass=m2*q1"), 4, 13, "the mass of link 2 must not depend on the joint variables, but contains q1"),
         (rr_with_link(2, "link 2 mass=m2 com=[0, q̇2, 0]"), 4, 24, "the centre of mass of link 2 must not depend on the joint variables, but contains qd2"),
         (rr_with_link(2, "link 2 mass=m2 inertia=diag(1, q1, 1)"), 4, 32, "the inertia of link 2 must not depend"),
@@ -600,4 +616,27 @@ proptest! {
     fn arbitrary_lines_after_a_good_scene_never_panic(line in any::<String>()) {
         read_never_panics(&format!("{RR}{line}"));
     }
+}
+
+/// The robot's warnings are computed once (`Robot::warnings`): the derivation reports exactly the
+/// scene's warnings about the robot, each once, and the scene adds only what it alone knows (no
+/// `gravity` line).
+#[test]
+fn derivation_warnings_are_the_scenes_own() {
+    let text = "\
+joint 1 prismatic  a=0  alpha=90  d=q1  theta=0
+joint 2 revolute   a=0  alpha=0  d=0   theta=q2
+link 1  mass=m1  inertia=diag(1, 2, 3)
+link 2  mass=m2  inertia=diag(1, 1, 3)
+";
+    let scene = read(text);
+    let der = symdyn::dynamics::Derivation::new(scene.robot.clone()).unwrap();
+    let from_der: Vec<String> = der.warnings().iter().map(|w| w.to_string()).collect();
+    let from_scene: Vec<&str> = scene.warnings.iter().map(|w| w.message()).collect();
+    assert_eq!(from_der.len(), 3, "{from_der:?}");
+    for w in &from_der {
+        assert_eq!(from_scene.iter().filter(|m| *m == w).count(), 1, "{w}");
+    }
+    assert_eq!(from_scene.len(), from_der.len() + 1);
+    assert!(from_scene.iter().any(|m| m.contains("no `gravity` line")));
 }

@@ -179,3 +179,27 @@ fn cli_sheet_prints_the_document_and_checks_its_arguments() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--pdf needs -o FILE.tex"));
 }
+
+/// A modified-DH sheet states the moment equation the recursion computes for joints acting at `o_i`
+/// (Craig), not Spong's standard-DH one, and names each joint's axis `z_i`.
+#[test]
+fn modified_dh_sheet_states_its_own_moment_equation() {
+    let scene = "dh modified
+joint 1 revolute a=0 alpha=0 d=0 theta=q1
+joint 2 revolute a=l1 alpha=0 d=0 theta=q2
+link 1 mass=m1 com=[lc1, 0, 0] inertia=diag(0, 0, I1)
+link 2 mass=m2 com=[lc2, 0, 0] inertia=diag(0, 0, I2)
+";
+    let modified = sheet(&derivation(scene), &SheetOptions::default());
+    let craig = "n_i = R^{i}_{i+1} n_{i+1} - f_i \\times r_{i,c_i} + (R^{i}_{i+1} f_{i+1}) \\times (r_{i,c_i} - r_{i,i+1})";
+    assert_eq!(modified.matches(craig).count(), 2, "both frames");
+    assert!(!modified.contains("r_{i-1,c_i}"));
+    assert!(modified.contains("$n_i^T z^{(i)}_{i}$") && modified.contains("$n_i^T z_{i}$"));
+    assert!(
+        modified.contains("Joint 2: $z^{(2)}_{2} = [0, 0, 1]^T$"),
+        "the axis of joint 2 in frame 2"
+    );
+    let standard = sheet(&derivation(BUILTIN_PPP), &SheetOptions::default());
+    assert!(standard.contains("f_i \\times r_{i-1,c_i} + (R^{i}_{i+1} f_{i+1}) \\times r_{i,c_i}"));
+    assert!(!standard.contains("r_{i,i+1}"));
+}

@@ -178,7 +178,7 @@ impl Expr {
             Kind::Num(r) => Expr::sqrt_rational(r),
             _ => {
                 // sqrt(c sqrt(k))^2 ... only rationals are supported.
-                Err(AlgebraError::SqrtOfNonRational(format!("{e:?}")))
+                Err(AlgebraError::SqrtOfNonRational(e.to_string()))
             }
         }
     }
@@ -518,7 +518,7 @@ impl Expr {
                 .to_i64()
                 .filter(|e| e.abs() <= i32::MAX as i64)
                 .ok_or_else(|| AlgebraError::TooLarge(r.to_string())),
-            _ => Err(AlgebraError::NonIntegerPower(format!("{self:?}"))),
+            _ => Err(AlgebraError::NonIntegerPower(self.to_string())),
         }
     }
 
@@ -863,6 +863,21 @@ mod tests {
         assert_eq!((&b - &a).pow(2).unwrap(), (&a - &b).pow(2).unwrap());
         assert_eq!((&b - &a).pow(3).unwrap(), -(&a - &b).pow(3).unwrap());
         assert_eq!((&b - &a) * (&a - &b).pow(-1).unwrap(), Expr::int(-1));
+    }
+
+    /// Errors name expressions as the parser reads them, not in the debug form.
+    #[test]
+    fn errors_name_expressions_readably() {
+        let two_pi = Expr::int(2) * Expr::pi();
+        assert_eq!(
+            Expr::sqrt(&two_pi).unwrap_err().to_string(),
+            "sqrt takes a rational number here, not `2*pi`"
+        );
+        let half_x = Expr::symbol("x") + Expr::frac(1, 2).unwrap();
+        assert_eq!(
+            half_x.integer_exponent().unwrap_err().to_string(),
+            "only integer powers are supported, not `x + 1/2`"
+        );
     }
 
     #[test]

@@ -92,12 +92,11 @@ impl Derivation {
         facts
     }
 
-    /// Warnings about the scene: inertia given for links that never rotate.
+    /// Warnings about the robot ([`Robot::warnings`]: the same list the scene parser locates in the
+    /// file, computed in one place): an inertia given for a link that never rotates, angles that look
+    /// like degrees, inertias no body has, a massless robot.
     pub fn warnings(&self) -> Vec<Warning> {
-        (0..self.robot.dof())
-            .filter(|&i| !self.kin.rotates[i] && self.robot.links[i].inertia.is_some())
-            .map(|i| Warning::UnusedInertia { link: i + 1 })
-            .collect()
+        self.robot.warnings()
     }
 
     /// The equations of motion from the Euler–Lagrange left sides.

@@ -42,7 +42,8 @@ impl fmt::Display for Fact {
     }
 }
 
-/// A warning about a scene: something stated that the physics does not use.
+/// A warning about a robot: something stated that the physics does not use, or that is physically
+/// odd enough to be a mistake (see [`Robot::warnings`](super::Robot::warnings)). Each says how to fix it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Warning {
     /// An inertia tensor given for a link that never rotates.
@@ -50,6 +51,33 @@ pub enum Warning {
         /// The link, 1-based.
         link: usize,
     },
+    /// A constant angle (a twist `α`, or the constant of `θ`) that is a plain number above 2π in
+    /// magnitude: radians, though probably meant as degrees.
+    AngleInDegrees {
+        /// The joint, 1-based.
+        joint: usize,
+        /// The field, `alpha` or `theta`.
+        field: &'static str,
+        /// The angle as written in radians, `90`.
+        value: String,
+    },
+    /// An inertia tensor that no body has: not positive semi-definite.
+    InertiaNotPositive {
+        /// The link, 1-based.
+        link: usize,
+        /// Which principal minor is negative, in words: "I_xx = -1", "the minor of x, y is -3".
+        witness: String,
+    },
+    /// An inertia tensor whose principal moments break the triangle inequality (each at most the
+    /// sum of the other two), which no body has.
+    InertiaTriangle {
+        /// The link, 1-based.
+        link: usize,
+        /// The broken inequality, in words: "I_xx + I_yy = 2 < I_zz = 5".
+        witness: String,
+    },
+    /// Every link's mass is 0 and no link has an inertia: the equations of motion are `0 = τ`.
+    Massless,
 }
 
 impl fmt::Display for Warning {
@@ -58,6 +86,22 @@ impl fmt::Display for Warning {
             Warning::UnusedInertia { link } => write!(
                 f,
                 "the inertia of link {link} is not used: the link never rotates (only prismatic joints precede it)"
+            ),
+            Warning::AngleInDegrees { joint, field, value } => write!(
+                f,
+                "joint {joint}: the angle {value} in `{field}` is taken in radians, more than a full turn: did you mean {value}deg?"
+            ),
+            Warning::InertiaNotPositive { link, witness } => write!(
+                f,
+                "the inertia of link {link} is not positive semi-definite ({witness}), so no body has it: check the signs (a product of inertia is I_xy = -∫ x y dm)"
+            ),
+            Warning::InertiaTriangle { link, witness } => write!(
+                f,
+                "the principal moments of inertia of link {link} break the triangle inequality ({witness}; each must be at most the sum of the other two), so no body has them: check the values"
+            ),
+            Warning::Massless => write!(
+                f,
+                "every link's mass is 0 and no link has an inertia, so the equations of motion say 0 = τ: give the links their masses (mass=m1, ...)"
             ),
         }
     }

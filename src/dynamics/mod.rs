@@ -6,7 +6,8 @@
 //! - [`lagrange`]: `D`, `c_ijk`, `C`, `P`, `g`, the equations.
 //! - [`newton_euler`] (generic over the scalar) and [`ne_symbolic`] (its exact inputs, body or inertial).
 //! - [`ne_compact`]: the compact Newton–Euler, a program of small named intermediates.
-//! - [`facts`]: what is structurally zero; [`derivation`]: one robot's results, computed on demand.
+//! - [`facts`]: what is structurally zero; [`plausibility`]: what is physically odd (warnings);
+//!   [`derivation`]: one robot's results, computed on demand.
 //! - [`check`]: the proofs; [`numeric`]: an independent `f64` inverse dynamics for cross-checks.
 
 pub mod check;
@@ -20,6 +21,7 @@ pub mod ne_compact;
 pub mod ne_symbolic;
 pub mod newton_euler;
 pub mod numeric;
+pub mod plausibility;
 pub mod scalar;
 pub mod vec3;
 

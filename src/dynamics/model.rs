@@ -157,6 +157,16 @@ pub enum ModelError {
         /// The coordinate's name.
         var: String,
     },
+    /// A mass that is a negative number.
+    #[error("the mass of link {link} is {value}, negative: a mass is at least 0 (write `mass={positive}`)")]
+    NegativeMass {
+        /// The link, 1-based.
+        link: usize,
+        /// The mass as a number.
+        value: String,
+        /// Its magnitude, the probable intent.
+        positive: String,
+    },
     /// Wrong number of input names.
     #[error("{names} input names for {joints} joints")]
     InputCount {
@@ -245,6 +255,19 @@ pub fn check_joint(index: usize, joint: &Joint) -> Result<(), (Field, ModelError
     Ok(())
 }
 
+/// Checks link `link`'s mass: a mass that is a number must not be negative (a symbolic mass, `m1`
+/// or `-m1`, may stand for anything and is left alone).
+pub fn check_mass(link: usize, mass: &Expr) -> Result<(), ModelError> {
+    match mass.as_rational() {
+        Some(r) if r.is_negative() => Err(ModelError::NegativeMass {
+            link,
+            value: r.to_string(),
+            positive: r.abs().to_string(),
+        }),
+        _ => Ok(()),
+    }
+}
+
 impl Robot {
     /// The number of joints.
     pub fn dof(&self) -> usize {
@@ -252,7 +275,7 @@ impl Robot {
     }
 
     /// Checks the model's invariants (see [`check_joint`]); masses, centres of mass, inertias and
-    /// gravity must be constant.
+    /// gravity must be constant, and no mass a negative number ([`check_mass`]).
     pub fn validate(&self) -> Result<(), ModelError> {
         if self.joints.is_empty() {
             return Err(ModelError::NoJoints);
@@ -284,6 +307,7 @@ impl Robot {
         }
         for (i, l) in self.links.iter().enumerate() {
             constant(format!("the mass of link {}", i + 1), &l.mass)?;
+            check_mass(i + 1, &l.mass)?;
             for c in &l.com {
                 constant(format!("the centre of mass of link {}", i + 1), c)?;
             }

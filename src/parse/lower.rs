@@ -355,7 +355,7 @@ fn apply(pair: Pair<'_, Rule>, function: Function, arg: Spanned) -> Lowered {
         Function::Cos => Ok(Expr::cos(&arg.expr)),
         Function::Tan => Expr::tan(&arg.expr),
         Function::Sqrt => Expr::sqrt(&arg.expr).map_err(|e| match e {
-            // The core names the argument in its debug form; the user's own text reads better.
+            // The user's own text reads better than the core's canonical form of it.
             AlgebraError::SqrtOfNonRational(_) => {
                 AlgebraError::SqrtOfNonRational(input[arg.span.clone()].trim().to_string())
             }

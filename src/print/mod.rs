@@ -50,6 +50,14 @@ pub enum Style {
     Latex,
 }
 
+impl std::fmt::Display for Expr {
+    /// The ASCII style, which the parser reads back: `2*m2*lc2^2*sin(q2)`. (This is how errors of the
+    /// algebra core name an expression.)
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&to_string(self, Style::Ascii))
+    }
+}
+
 /// One expression in the given style.
 pub fn to_string(e: &Expr, style: Style) -> String {
     match style {

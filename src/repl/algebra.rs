@@ -3,19 +3,48 @@
 
 use super::{Command, ReplError, Session};
 use crate::algebra::{self, Expr, Symbol};
-use crate::parse::parse_expr;
+use crate::parse::{parse_expr, ParseError};
 use crate::print;
 use std::collections::HashMap;
 
 impl Session {
     /// `text` parsed, with the user's variables substituted.
     pub(super) fn expr(&self, text: &str) -> Result<Expr, ReplError> {
-        let e = parse_expr(text).map_err(|e| ReplError::Parse(e.render("<input>")))?;
+        self.expr_in(text, None)
+    }
+
+    /// [`Session::expr`] of `text`, written inside the word `within` of the line (an assignment
+    /// `name=value`) if given: a parse error is located in the whole line, its column counted from
+    /// the line's start.
+    fn expr_in(&self, text: &str, within: Option<&str>) -> Result<Expr, ReplError> {
+        let e = parse_expr(text).map_err(|e| ReplError::Parse(self.in_line(text, within, &e)))?;
         if self.vars.is_empty() {
             return Ok(e);
         }
         let map: HashMap<Symbol, Expr> = self.vars.values().cloned().collect();
         algebra::subs(&e, &map).map_err(|e| ReplError::Math(e.to_string()))
+    }
+
+    /// A parse error of `text` rendered in the current line: `text` is looked for inside `within`,
+    /// or after the command word; if it is not found there, the error stays relative to `text`.
+    fn in_line(&self, text: &str, within: Option<&str>, e: &ParseError) -> String {
+        let line = self.line.as_str();
+        let command = line
+            .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .unwrap_or(line.len());
+        let start = match within {
+            Some(w) => line[command..].find(w).map(|i| command + i),
+            None => Some(command),
+        };
+        let at = start.and_then(|s| line[s..].find(text).map(|i| s + i));
+        match at {
+            Some(at) => {
+                let span = e.span();
+                ParseError::new(e.kind().clone(), line, at + span.start..at + span.end)
+                    .render("<input>")
+            }
+            None => e.render("<input>"),
+        }
     }
 
     /// A variable name: a parameter or a coordinate (`m2`, `q1`, `qd1`).
@@ -64,7 +93,10 @@ impl Session {
     fn exact_values(&self, pairs: &[(String, String)]) -> Result<HashMap<Symbol, Expr>, ReplError> {
         pairs
             .iter()
-            .map(|(n, v)| Ok((self.variable(n)?, self.expr(v)?)))
+            .map(|(n, v)| {
+                let word = format!("{n}={v}");
+                Ok((self.variable(n)?, self.expr_in(v, Some(&word))?))
+            })
             .collect()
     }
 

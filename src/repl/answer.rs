@@ -35,7 +35,9 @@ impl Session {
     /// Checks 1-based (or, with `low = 0`, 0-based) indices against the robot.
     fn check(&self, query: String, low: usize, indices: &[usize]) -> Result<(), ReplError> {
         let n = self.dof();
-        if indices.iter().all(|&i| i >= low && i <= n) {
+        if indices.iter().any(|&i| i < low) && low == 1 {
+            Err(ReplError::IndexFromOne { query, dof: n })
+        } else if indices.iter().all(|&i| i >= low && i <= n) {
             Ok(())
         } else {
             Err(ReplError::Index { query, dof: n, low })

@@ -29,6 +29,14 @@ pub enum ReplError {
         /// The lowest index the query accepts (0 for frames, 1 otherwise).
         low: usize,
     },
+    /// An index below 1 where indices count from 1 (`D[0,1]`).
+    #[error("{query}: indices start at 1, as in the book (the robot's joints are 1 to {dof})")]
+    IndexFromOne {
+        /// The query as typed back: `D[0,1]`, `Jv 0`.
+        query: String,
+        /// The robot's number of joints.
+        dof: usize,
+    },
     /// A mathematical operation without a result (a value that is not a number, a zero denominator).
     #[error("{0}")]
     Math(String),

@@ -33,6 +33,8 @@ pub struct Session {
     der: Derivation,
     vars: BTreeMap<String, (Symbol, Expr)>,
     style: Style,
+    /// The line being answered, so that errors in its expressions are located in it.
+    line: String,
 }
 
 impl Default for Session {
@@ -67,6 +69,7 @@ impl Session {
             der: Derivation::new(scene.robot).expect("the built-in scene is valid"),
             vars: BTreeMap::new(),
             style: Style::Text,
+            line: String::new(),
         }
     }
 
@@ -101,6 +104,7 @@ impl Session {
 
     /// Answers one line (not blank, not a comment). The answer has no trailing newline.
     pub fn eval(&mut self, line: &str) -> Result<String, ReplError> {
+        line.trim().clone_into(&mut self.line);
         let cmd = command::parse(line)?;
         match cmd {
             Command::Help(topic) => Ok(help::help(topic.as_deref())),

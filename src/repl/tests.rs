@@ -60,7 +60,8 @@ fn answers() {
 fn errors_leave_the_session_running() {
     let rows: &[(&str, &str)] = &[
         ("D[4,1]", "D[4,1]: the robot has 3 joints"),
-        ("D[0,1]", "D[0,1]: the robot has 3 joints"),
+        ("D[0,1]", "D[0,1]: indices start at 1, as in the book (the robot's joints are 1 to 3)"),
+        ("christoffel 1 0 1", "christoffel 1 0 1: indices start at 1, as in the book (the robot's joints are 1 to 3)"),
         ("Jv 4", "Jv 4: the robot has 3 joints"),
         ("T 4", "T 4: the robot has 3 joints (frames 0 to 3)"),
         (
@@ -79,9 +80,37 @@ fn errors_leave_the_session_running() {
         assert_eq!(s.eval(line).unwrap_err().to_string(), *want, "{line}");
         assert_eq!(s.eval("D[3,3]").as_deref(), Ok("m3"), "after {line}");
     }
-    let err = s.eval("simplify (m1 + ").unwrap_err().to_string();
-    assert!(err.starts_with("<input>:1:"), "{err}");
-    assert!(err.contains('^'), "{err}");
+    // Parse errors are located in the whole line: the column counts from its start, and the line is
+    // shown with the caret under the place.
+    let rows: &[(&str, &str)] = &[
+        (
+            "simplify (m1 + ",
+            "<input>:1:15: expected a number, a name, `(` or a function call
+  simplify (m1 +
+                ^",
+        ),
+        (
+            "let y = 2*(3",
+            "<input>:1:11: unclosed `(`
+  let y = 2*(3
+            ^",
+        ),
+        (
+            "subs m1 m1=1/0",
+            "<input>:1:14: division by zero
+  subs m1 m1=1/0
+               ^",
+        ),
+        (
+            "diff x^ x",
+            "<input>:1:8: expected a number, a name, `(` or a function call
+  diff x^ x
+         ^",
+        ),
+    ];
+    for (line, want) in rows {
+        assert_eq!(s.eval(line).unwrap_err().to_string(), *want, "{line}");
+    }
 }
 
 #[test]

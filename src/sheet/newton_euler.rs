@@ -6,7 +6,7 @@ use super::layout::Layout;
 use crate::algebra::tidy::Grouping;
 use crate::algebra::{Expr, Poly};
 use crate::dynamics::vec3::Vec3;
-use crate::dynamics::{Derivation, Frame, JointKind};
+use crate::dynamics::{Convention, Derivation, Frame, JointKind};
 
 fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
     v.0.iter().map(Poly::to_expr).collect()
@@ -35,6 +35,24 @@ fn vector(lay: &mut Layout, name: &str, v: &Vec3<Poly>) -> String {
         &move |k| format!("({base})_{{{}}}", ["x", "y", "z"][k]),
         Grouping::Leading,
     )
+}
+
+/// The moment equation of the backward recursion as `dynamics::newton_euler` computes it,
+/// `n_i = R n_{i+1} − f_i × r_{J,c_i} + (R f_{i+1}) × (r_{i,c_i} − s_{i+1}) + I_i α_i + ω_i × (I_i ω_i)`
+/// with `J` the point where joint `i` acts: `o_{i−1}` in standard DH (Spong: `r_{J,c_i} = r_{i−1,c_i}`
+/// and `s_{i+1} = 0`), `o_i` in modified DH (Craig: `r_{J,c_i} = r_{i,c_i}` and `s_{i+1} = r_{i,i+1}`,
+/// from `o_i` to `o_{i+1}`).
+fn moment_formula(convention: Convention) -> &'static str {
+    match convention {
+        Convention::Standard => {
+            "R^{i}_{i+1} n_{i+1} - f_i \\times r_{i-1,c_i} + (R^{i}_{i+1} f_{i+1}) \\times r_{i,c_i} \
+             + I_i \\alpha_i + \\omega_i \\times (I_i \\omega_i)"
+        }
+        Convention::Modified => {
+            "R^{i}_{i+1} n_{i+1} - f_i \\times r_{i,c_i} + (R^{i}_{i+1} f_{i+1}) \\times (r_{i,c_i} - r_{i,i+1}) \
+             + I_i \\alpha_i + \\omega_i \\times (I_i \\omega_i)"
+        }
+    }
 }
 
 /// The section for `frame`.
@@ -86,11 +104,10 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
     out.push_str(&format!(
         "\\subsection*{{Backward recursion}}\nStart with $f_{{{}}} = 0$ and $n_{{{}}} = 0$. Then \
          $f_i = R^{{i}}_{{i+1}} f_{{i+1}} + m_i (a_{{c,i}} - g_i)$ and \
-         $n_i = R^{{i}}_{{i+1}} n_{{i+1}} - f_i \\times r_{{i-1,c_i}} + (R^{{i}}_{{i+1}} f_{{i+1}}) \\times r_{{i,c_i}} \
-         + I_i \\alpha_i + \\omega_i \\times (I_i \\omega_i)$ (in the inertial frame the rotations are \
-         the identity):\n",
+         $n_i = {}$ (in the inertial frame the rotations are the identity):\n",
         n + 1,
-        n + 1
+        n + 1,
+        moment_formula(robot.convention)
     ));
     for i in (0..n).rev() {
         let k = i + 1;
@@ -103,9 +120,12 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
             )),
         }
     }
-    let axis = match frame {
-        Frame::Body => "z^{(i)}_{i-1}",
-        Frame::Inertial => "z_{i-1}",
+    // The axis of joint i: z_{i-1} in standard DH, z_i in modified DH.
+    let axis = match (frame, robot.convention) {
+        (Frame::Body, Convention::Standard) => "z^{(i)}_{i-1}",
+        (Frame::Inertial, Convention::Standard) => "z_{i-1}",
+        (Frame::Body, Convention::Modified) => "z^{(i)}_{i}",
+        (Frame::Inertial, Convention::Modified) => "z_{i}",
     };
     out.push_str(&format!(
         "\\subsection*{{Actuated forces and torques}}\nThe actuated force of a prismatic joint is \
@@ -125,9 +145,13 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
             Frame::Inertial => &kin.axis0[i],
         }
         .scale(&jf.rate);
+        let frame_of_axis = match robot.convention {
+            Convention::Standard => i,
+            Convention::Modified => k,
+        };
         let axis_i = match frame {
-            Frame::Body => format!("z^{{({k})}}_{{{i}}}"),
-            Frame::Inertial => format!("z_{{{i}}}"),
+            Frame::Body => format!("z^{{({k})}}_{{{frame_of_axis}}}"),
+            Frame::Inertial => format!("z_{{{frame_of_axis}}}"),
         };
         let (what, vec) = match jf.kind {
             JointKind::Prismatic => ("f", "force"),

@@ -9,7 +9,7 @@ use super::Scene;
 use crate::algebra::{equal, Expr, Symbol};
 use crate::dynamics::facts::Warning;
 use crate::dynamics::inertia::{self, Axis, Tensor};
-use crate::dynamics::model::{check_joint, Field, ModelError};
+use crate::dynamics::model::{check_joint, check_mass, Field, ModelError};
 use crate::dynamics::{Convention, Joint, JointKind, Link, Robot};
 use crate::parse::error::ParseError;
 use crate::parse::grammar::Rule;
@@ -230,6 +230,8 @@ struct JointEntry {
     line: usize,
     /// The file range of `joint N`.
     head: Range<usize>,
+    /// The file ranges of its fields' values, in the order of [`Field`].
+    fields: [Range<usize>; 4],
 }
 
 /// A link as stated, with where.
@@ -475,19 +477,16 @@ impl Builder {
             d: d.0,
             theta: theta.0,
         };
+        // The fields' ranges, in the order of `Field`.
+        let fields = [a.1, alpha.1, d.1, theta.1];
         if let Err((field, e)) = check_joint(n, &joint) {
-            let at_field = match field {
-                Field::A => a.1,
-                Field::Alpha => alpha.1,
-                Field::D => d.1,
-                Field::Theta => theta.1,
-            };
-            return Err(at.error(SceneErrorKind::Model(e), at_field));
+            return Err(at.error(SceneErrorKind::Model(e), fields[field as usize].clone()));
         }
         self.joints.push(JointEntry {
             joint,
             line: at.line,
             head,
+            fields: fields.map(|f| at.file(f)),
         });
         Ok(())
     }
@@ -529,7 +528,10 @@ impl Builder {
                             f.value_span,
                         ));
                     };
-                    mass = Some(at.constant(pair, &what("mass"))?);
+                    let m = at.constant(pair, &what("mass"))?;
+                    check_mass(n, &m)
+                        .map_err(|e| at.error(SceneErrorKind::Model(e), f.value_span.clone()))?;
+                    mass = Some(m);
                 }
                 "com" => {
                     let Value::Vector(v) = &f.value else {
@@ -652,17 +654,12 @@ impl Builder {
             links[i] = Some(l);
         }
         let mut robot_links = Vec::with_capacity(n);
-        let mut warnings = Vec::new();
-        let mut rotates = false;
+        let mut link_spans = Vec::with_capacity(n);
         for (i, (entry, joint)) in links.into_iter().zip(&self.joints).enumerate() {
             let Some(entry) = entry else {
                 return error(SceneErrorKind::JointWithoutLink(i + 1), joint.head.clone());
             };
-            rotates |= joint.joint.kind == JointKind::Revolute;
-            if let (false, Some(span)) = (rotates, entry.inertia) {
-                let message = Warning::UnusedInertia { link: i + 1 }.to_string();
-                warnings.push(SceneWarning::new(message, source, span));
-            }
+            link_spans.push((entry.head, entry.inertia));
             robot_links.push(entry.link);
         }
         let inputs = match self.inputs {
@@ -678,6 +675,10 @@ impl Builder {
             Some(given) => given.names,
             None => Robot::default_inputs(n),
         };
+        let gravity_stated = self.gravity.is_some();
+        let joint_spans: Vec<[Range<usize>; 4]> =
+            self.joints.iter().map(|j| j.fields.clone()).collect();
+        let first_joint = self.joints[0].head.clone();
         let robot = Robot {
             name: self.name.map_or_else(|| "robot".to_string(), |(n, _)| n),
             gravity: self.gravity.map_or_else(default_gravity, |(g, _)| g),
@@ -691,6 +692,41 @@ impl Builder {
         if let Err(e) = robot.validate() {
             return error(SceneErrorKind::Model(e), 0..0);
         }
+        // The robot's warnings, each at the text it is about, then what only the scene can know.
+        let mut warnings: Vec<SceneWarning> = robot
+            .warnings()
+            .into_iter()
+            .map(|w| {
+                let span = match &w {
+                    Warning::UnusedInertia { link }
+                    | Warning::InertiaNotPositive { link, .. }
+                    | Warning::InertiaTriangle { link, .. } => {
+                        let (head, inertia) = &link_spans[link - 1];
+                        inertia.clone().unwrap_or_else(|| head.clone())
+                    }
+                    Warning::AngleInDegrees { joint, field, .. } => {
+                        let f = if *field == "alpha" {
+                            Field::Alpha
+                        } else {
+                            Field::Theta
+                        };
+                        joint_spans[joint - 1][f as usize].clone()
+                    }
+                    Warning::Massless => link_spans[0].0.clone(),
+                };
+                SceneWarning::new(w.to_string(), source, span)
+            })
+            .collect();
+        if !gravity_stated {
+            warnings.push(SceneWarning::new(
+                "the scene has no `gravity` line, so gravity is [0, 0, -g] in frame 0 (along -z_0): \
+                 state it, e.g. `gravity [0, -g, 0]`, or `gravity [0, 0, 0]` for none"
+                    .to_string(),
+                source,
+                first_joint,
+            ));
+        }
+        warnings.sort_by_key(SceneWarning::line);
         Ok(Scene { robot, warnings })
     }
 }
