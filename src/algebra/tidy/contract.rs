@@ -13,7 +13,10 @@
 //! - `cos(A−B)`: `cos q1 cos q2 + sin q1 sin q2` is `cos(q1 − q2)`;
 //! - `sin(A+B)`: `sin q2 cos q3 + cos q2 sin q3` is `sin(q2 + q3)`;
 //! - `sin(A−B)`: `sin q1 cos q2 − cos q1 sin q2` is `sin(q1 − q2)`;
-//! - `pythagoras` ([`super::pythagoras`]): `a − a cos² q2` is `a sin² q2`.
+//! - `pythagoras` ([`super::pythagoras`]): `a − a cos² q2` is `a sin² q2`;
+//! - `square of an angle sum` ([`super::square`]): the expansion of `cos²(q2 + q3)` is `cos²(q2 + q3)`,
+//!   so `I_y cos²(q2 + q3) + I_x sin²(q2 + q3)` comes back whole and `cos²(q2 + q3) + sin²(q2 + q3)`
+//!   is 1.
 //!
 //! With other factors and coefficients: `a cos q1 cos q2 − a sin q1 sin q2 + b` is
 //! `a cos(q1 + q2) + b`, and `cos q1 cos q2 cos q3 − cos q1 sin q2 sin q3` is `cos q1 cos(q2 + q3)`.
@@ -32,8 +35,13 @@ use std::collections::BTreeMap;
 /// The most passes [`contract_trig`] makes (each pass merges at least one pair of terms).
 pub const PASS_LIMIT: usize = 64;
 
-/// The rule set of [`contract_trig`], tried in this order on every pass.
-pub const TRIG_RULES: [Rule; 2] = [
+/// The rule set of [`contract_trig`], tried in this order on every pass: squares of angle sums first,
+/// since the angle-sum rule would otherwise take the square's two characteristic terms apart.
+pub const TRIG_RULES: [Rule; 3] = [
+    Rule {
+        name: "square of an angle sum",
+        apply: super::square::square_sum,
+    },
     Rule {
         name: "angle sum",
         apply: angle_sum,

@@ -28,8 +28,8 @@
 //! candidates are visited in the canonical order of [`Expr`], never in hash order, and [`tidy`] starts
 //! from the normal form, so inputs equal as functions give identical outputs.
 //!
-//! Known limits: squares of angle sums are not recovered (`cos²(q2 + q3)` comes back as
-//! `2 cos(q2 + q3) cos q2 cos q3 + sin² q2 − cos² q3`, equal but longer), double angles stay expanded
+//! Known limits: squares of sums of more than two angles are recovered only as far as the passes
+//! contract their parts (`cos²(q2 + q3)` comes back whole, see [`square`]), double angles stay expanded
 //! (`cos(2 q1 + q2)` is `2 cos(q1 + q2) cos q1 − cos q2`), and the greedy pairing keeps the first
 //! match in canonical order, not the globally shortest result.
 
@@ -40,6 +40,7 @@ pub mod factor;
 pub mod group;
 pub mod pythagoras;
 pub mod rule;
+pub mod square;
 
 #[cfg(test)]
 mod proptests;
@@ -117,6 +118,18 @@ mod tests {
             ),
             (Expr::int(2) * &s1 * &c1, Expr::int(2) * &s1 * &c1),
             (Expr::zero(), Expr::zero()),
+            // Squares of angle sums come back whole (a 3R arm's inertia about its first axis).
+            (
+                &m1 * Expr::cos(&(&q1 + &q2)).pow(2).unwrap()
+                    + &m2 * Expr::sin(&(&q1 + &q2)).pow(2).unwrap(),
+                &m1 * Expr::cos(&(&q1 + &q2)).pow(2).unwrap()
+                    + &m2 * Expr::sin(&(&q1 + &q2)).pow(2).unwrap(),
+            ),
+            (
+                &g * Expr::cos(&(&q1 - &q2)).pow(2).unwrap()
+                    + &g * Expr::sin(&(&q1 - &q2)).pow(2).unwrap(),
+                g.clone(),
+            ),
         ];
         for (input, expected) in rows {
             check(input, expected);
