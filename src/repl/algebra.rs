@@ -1,7 +1,7 @@
 //! The expression commands (simplify, expand, diff, dt, subs, eval, latex) and the user's variables:
 //! every expression has the variables substituted before the command works on it.
 
-use super::{Command, ReplError, Session};
+use super::{refs, Command, ReplError, Session};
 use crate::algebra::{self, Expr, Symbol};
 use crate::parse::{parse_expr, ParseError};
 use crate::print;
@@ -17,12 +17,26 @@ impl Session {
     /// `name=value`) if given: a parse error is located in the whole line, its column counted from
     /// the line's start.
     fn expr_in(&self, text: &str, within: Option<&str>) -> Result<Expr, ReplError> {
-        let e = parse_expr(text).map_err(|e| ReplError::Parse(self.in_line(text, within, &e)))?;
+        let (plain, refs) = refs::split(text)?;
+        let mut e =
+            parse_expr(&plain).map_err(|e| ReplError::Parse(self.in_line(text, within, &e)))?;
+        if !refs.is_empty() {
+            let mut entries: HashMap<Symbol, Expr> = HashMap::new();
+            for (name, r) in &refs {
+                entries.insert(Symbol::new(name), self.reference(r)?);
+            }
+            e = algebra::subs(&e, &entries).map_err(|e| ReplError::Math(e.to_string()))?;
+        }
+        self.with_vars(&e)
+    }
+
+    /// `e` with the user's variables substituted (`let m1 = 2` changes every later answer).
+    pub(super) fn with_vars(&self, e: &Expr) -> Result<Expr, ReplError> {
         if self.vars.is_empty() {
-            return Ok(e);
+            return Ok(e.clone());
         }
         let map: HashMap<Symbol, Expr> = self.vars.values().cloned().collect();
-        algebra::subs(&e, &map).map_err(|e| ReplError::Math(e.to_string()))
+        algebra::subs(e, &map).map_err(|e| ReplError::Math(e.to_string()))
     }
 
     /// A parse error of `text` rendered in the current line: `text` is looked for inside `within`,

@@ -3,31 +3,67 @@
 //! are 1-based as in the book and checked against the robot before anything is derived.
 
 use super::command::{words, Quantity};
+use super::refs::Ref;
 use super::{Command, ReplError, Session};
 use crate::algebra::tidy::{tidy, tidy_by, Grouping};
-use crate::algebra::{Expr, Poly, Symbol};
+use crate::algebra::{to_poly, Expr, Poly, Symbol};
 use crate::dynamics::inertia::{self, Axis, Tensor};
 use crate::dynamics::kinematics::{columns_to_rows, mat_to_rows};
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::Frame;
 use crate::print;
-use crate::report::{self, lhs_terms, Method};
-
-fn entry(p: &Poly) -> Expr {
-    tidy(&p.to_expr())
-}
-
-/// An entry of a Newton–Euler vector: grouped as an equation side is (by `q̈`, by `q̇` products, then
-/// by trig monomial), kept as one expression.
-fn dynamic_entry(p: &Poly) -> Expr {
-    Expr::sum(lhs_terms(p))
-}
-
-fn inertia_entry(p: &Poly) -> Expr {
-    tidy_by(&p.to_expr(), Grouping::Leading)
-}
+use crate::report::{self, lhs_terms};
 
 impl Session {
+    /// A derived quantity as the user sees it: with the user's variables substituted.
+    fn shown(&self, p: &Poly) -> Result<Expr, ReplError> {
+        self.with_vars(&p.to_expr())
+    }
+
+    /// [`Session::shown`] as a polynomial (unchanged without variables).
+    fn shown_poly(&self, p: &Poly) -> Result<Poly, ReplError> {
+        if self.vars.is_empty() {
+            return Ok(p.clone());
+        }
+        Ok(to_poly(&self.shown(p)?))
+    }
+
+    fn entry(&self, p: &Poly) -> Result<Expr, ReplError> {
+        Ok(tidy(&self.shown(p)?))
+    }
+
+    /// An entry of a Newton–Euler vector: grouped as an equation side is (by `q̈`, by `q̇` products,
+    /// then by trig monomial), kept as one expression.
+    fn dynamic_entry(&self, p: &Poly) -> Result<Expr, ReplError> {
+        Ok(Expr::sum(lhs_terms(&self.shown_poly(p)?)))
+    }
+
+    fn inertia_entry(&self, p: &Poly) -> Result<Expr, ReplError> {
+        Ok(tidy_by(&self.shown(p)?, Grouping::Leading))
+    }
+
+    /// The terms of an equation side, in house order.
+    fn side(&self, p: &Poly) -> Result<String, ReplError> {
+        Ok(print::sum_to_string(
+            &lhs_terms(&self.shown_poly(p)?),
+            self.style,
+        ))
+    }
+
+    /// The value of a scene reference in an expression (`D[1,1]`), checked against the robot, with
+    /// the user's variables substituted.
+    pub(super) fn reference(&self, r: &Ref) -> Result<Expr, ReplError> {
+        self.check(r.text(), 1, &r.indices())?;
+        let l = self.der.lagrange();
+        let p = match *r {
+            Ref::D(i, j) => &l.d[i - 1][j - 1],
+            Ref::C(i, j) => &l.c[i - 1][j - 1],
+            Ref::G(k) => &l.g[k - 1],
+            Ref::Tau(k) => &l.tau[k - 1],
+        };
+        self.shown(p)
+    }
+
     fn dof(&self) -> usize {
         self.der.robot().dof()
     }
@@ -50,18 +86,32 @@ impl Session {
             .to_string()
     }
 
-    fn vector(&self, v: &Vec3<Poly>) -> String {
-        let v: Vec<Expr> = v.0.iter().map(dynamic_entry).collect();
-        print::vector_to_string(&v, self.style)
+    fn vector(&self, v: &Vec3<Poly>) -> Result<String, ReplError> {
+        let v: Vec<Expr> =
+            v.0.iter()
+                .map(|p| self.dynamic_entry(p))
+                .collect::<Result<_, _>>()?;
+        Ok(print::vector_to_string(&v, self.style))
     }
 
     fn one(&self, e: &Expr) -> String {
         print::to_string(e, self.style)
     }
 
-    fn tidy_rows(rows: Vec<Vec<Expr>>) -> Vec<Vec<Expr>> {
+    fn tidy_rows(&self, rows: Vec<Vec<Expr>>) -> Result<Vec<Vec<Expr>>, ReplError> {
         rows.into_iter()
-            .map(|r| r.iter().map(tidy).collect())
+            .map(|r| r.iter().map(|e| Ok(tidy(&self.with_vars(e)?))).collect())
+            .collect()
+    }
+
+    /// The rows of a matrix of polynomials, each entry shown by `entry`.
+    fn rows(
+        &self,
+        m: &[Vec<Poly>],
+        entry: impl Fn(&Self, &Poly) -> Result<Expr, ReplError>,
+    ) -> Result<Vec<Vec<Expr>>, ReplError> {
+        m.iter()
+            .map(|r| r.iter().map(|p| entry(self, p)).collect())
             .collect()
     }
 
@@ -69,70 +119,65 @@ impl Session {
     pub(super) fn query(&self, cmd: &Command) -> Result<String, ReplError> {
         let der = &self.der;
         Ok(match cmd {
-            Command::D(None) => {
-                let d = &der.lagrange().d;
-                self.matrix(
-                    d.iter()
-                        .map(|r| r.iter().map(inertia_entry).collect())
-                        .collect(),
-                )
-            }
+            Command::D(None) => self.matrix(self.rows(&der.lagrange().d, Self::inertia_entry)?),
             Command::D(Some((i, j))) => {
                 self.check(format!("D[{i},{j}]"), 1, &[*i, *j])?;
-                self.one(&inertia_entry(&der.lagrange().d[i - 1][j - 1]))
+                self.one(&self.inertia_entry(&der.lagrange().d[i - 1][j - 1])?)
             }
-            Command::C => {
-                let c = &der.lagrange().c;
-                self.matrix(c.iter().map(|r| r.iter().map(entry).collect()).collect())
-            }
+            Command::C => self.matrix(self.rows(&der.lagrange().c, Self::entry)?),
             Command::Christoffel(Some([i, j, k])) => {
                 self.check(format!("christoffel {i} {j} {k}"), 1, &[*i, *j, *k])?;
                 let l = der.lagrange();
                 if l.d_constant {
                     "0".to_string()
                 } else {
-                    self.one(&entry(&l.christoffel[i - 1][j - 1][k - 1]))
+                    self.one(&self.entry(&l.christoffel[i - 1][j - 1][k - 1])?)
                 }
             }
-            Command::Christoffel(None) => self.christoffel_list(),
+            Command::Christoffel(None) => self.christoffel_list()?,
             Command::G => {
-                let g: Vec<Expr> = der.lagrange().g.iter().map(entry).collect();
+                let g: Vec<Expr> = der
+                    .lagrange()
+                    .g
+                    .iter()
+                    .map(|p| self.entry(p))
+                    .collect::<Result<_, _>>()?;
                 print::vector_to_string(&g, self.style)
             }
-            Command::P => self.one(&entry(&der.lagrange().p)),
-            Command::K => print::sum_to_string(&lhs_terms(&der.lagrange().k), self.style),
+            Command::P => self.one(&self.entry(&der.lagrange().p)?),
+            Command::K => self.side(&der.lagrange().k)?,
             Command::Jv(i) => {
                 self.check(format!("Jv {i}"), 1, &[*i])?;
-                self.matrix(Self::tidy_rows(columns_to_rows(
-                    &der.kinematics().jv[i - 1],
-                )))
+                self.matrix(self.tidy_rows(columns_to_rows(&der.kinematics().jv[i - 1]))?)
             }
             Command::Jw(i) => {
                 self.check(format!("Jw {i}"), 1, &[*i])?;
-                self.matrix(Self::tidy_rows(columns_to_rows(
-                    &der.kinematics().jw[i - 1],
-                )))
+                self.matrix(self.tidy_rows(columns_to_rows(&der.kinematics().jw[i - 1]))?)
             }
             Command::T(i) => {
                 self.check(format!("T {i}"), 0, &[*i])?;
-                self.matrix(Self::tidy_rows(der.kinematics().transform(*i)))
+                self.matrix(self.tidy_rows(der.kinematics().transform(*i))?)
             }
             Command::R(i) => {
                 self.check(format!("R {i}"), 0, &[*i])?;
-                self.matrix(Self::tidy_rows(mat_to_rows(&der.kinematics().rot0[*i])))
+                self.matrix(self.tidy_rows(mat_to_rows(&der.kinematics().rot0[*i]))?)
             }
-            Command::Eom(None) => report::equations(der, Method::Lagrange, self.style)
-                .trim_end()
-                .to_string(),
+            Command::Eom(None) => {
+                let lines: Vec<(String, String)> = (0..self.dof())
+                    .map(|k| self.equation(k))
+                    .collect::<Result<_, _>>()?;
+                report::equalities(&lines, self.style)
+                    .trim_end()
+                    .to_string()
+            }
             Command::Eom(Some(k)) => {
                 self.check(format!("eom {k}"), 1, &[*k])?;
-                let lhs = print::sum_to_string(&lhs_terms(&der.lagrange().tau[k - 1]), self.style);
-                let input = Expr::sym(Symbol::new(&der.robot().inputs[k - 1]));
-                format!("{lhs} = {}", self.one(&input))
+                let (lhs, input) = self.equation(k - 1)?;
+                format!("{lhs} = {input}")
             }
             Command::Ne(frame, q, i) => {
                 self.check(format!("ne {} {} {i}", frame.name(), q.name()), 1, &[*i])?;
-                self.newton_euler(*frame, *q, *i)
+                self.newton_euler(*frame, *q, *i)?
             }
             Command::Inertia(text) => self.inertia(text)?,
             Command::Facts => {
@@ -150,7 +195,14 @@ impl Session {
         })
     }
 
-    fn christoffel_list(&self) -> String {
+    /// Equation `k` (0-based) by Euler–Lagrange: its left side and its input's name.
+    fn equation(&self, k: usize) -> Result<(String, String), ReplError> {
+        let der = &self.der;
+        let input = Expr::sym(Symbol::new(&der.robot().inputs[k]));
+        Ok((self.side(&der.lagrange().tau[k])?, self.one(&input)))
+    }
+
+    fn christoffel_list(&self) -> Result<String, ReplError> {
         let l = self.der.lagrange();
         let n = self.dof();
         let mut lines = Vec::new();
@@ -165,7 +217,7 @@ impl Session {
                                 i + 1,
                                 j + 1,
                                 k + 1,
-                                self.one(&entry(c))
+                                self.one(&self.entry(c)?)
                             ));
                         }
                     }
@@ -174,15 +226,17 @@ impl Session {
         }
         if lines.is_empty() {
             if l.d_constant {
-                return "D(q) is constant, so all the Christoffel symbols c_ijk vanish and C(q, q̇) = 0."
-                    .into();
+                return Ok(
+                    "D(q) is constant, so all the Christoffel symbols c_ijk vanish and C(q, q̇) = 0."
+                        .into(),
+                );
             }
-            return "All the Christoffel symbols c_ijk vanish, so C(q, q̇) = 0.".into();
+            return Ok("All the Christoffel symbols c_ijk vanish, so C(q, q̇) = 0.".into());
         }
-        lines.join("\n")
+        Ok(lines.join("\n"))
     }
 
-    fn newton_euler(&self, frame: Frame, q: Quantity, i: usize) -> String {
+    fn newton_euler(&self, frame: Frame, q: Quantity, i: usize) -> Result<String, ReplError> {
         let ne = self.der.newton_euler(frame);
         let k = i - 1;
         match q {
@@ -194,11 +248,11 @@ impl Session {
             Quantity::F => self.vector(&ne.f[k]),
             Quantity::N => match &ne.n[k] {
                 Some(v) => self.vector(v),
-                None => format!(
+                None => Ok(format!(
                     "n_{i} is not computed: no revolute joint precedes link {i}, so its moment equation is not needed"
-                ),
+                )),
             },
-            Quantity::Tau => print::sum_to_string(&lhs_terms(&ne.tau[k]), self.style),
+            Quantity::Tau => self.side(&ne.tau[k]),
         }
     }
 

@@ -14,12 +14,12 @@ Scene queries (indices from 1; the built-in PPP arm until `load`):
   ne body f 1, ne inertial a_c 3   Newton–Euler omega alpha a_c a_e g f n tau
   inertia box(1/4,1,1/4) mass 1 at [0,1/2,0]   also cylinder(r,h[,axis]) rod(l[,axis]) sphere(r)
   facts                     what is structurally zero
-Expressions (user variables are substituted first):
-  simplify sin(q1)^2 + cos(q1)^2      expand (a+b)*(a-b)
+Expressions (user variables are substituted first; D[i,j], C[i,j], g[k], tau[k] are the scene's):
+  simplify sin(q1)^2 + cos(q1)^2      expand (a+b)*(a-b)      simplify D[1,1] - D[2,2]
   diff m2*lc2^2*sin(q2)^2 q2          dt sin(q1)*qd2
   subs m1*g*q1 m1=3/2 q1=2            eval l*cos(q1) l=2 q1=pi/3
   latex 17/192*m2*qdd2
-Session:
+Session (a variable named after a parameter, `let m1 = 2`, changes the scene's answers too):
   let h = m2*l1*lc2    vars    load examples/elbow.scene    format text|ascii|latex
   help COMMAND    quit";
 

@@ -6,7 +6,7 @@
 //! text to [`Session::load_scene_text`]. The `symdyn repl` binary is a thin loop over this API.
 //!
 //! - `command`: a line as a [`Command`]; `answer`: the scene queries; `algebra`: the expression
-//!   commands and user variables; `complete`: tab completion; `help`: the help text.
+//!   commands and user variables; `refs`: scene quantities inside expressions (`D[1,1]`); `complete`: tab completion; `help`: the help text.
 
 mod algebra;
 mod answer;
@@ -14,6 +14,7 @@ pub mod command;
 mod complete;
 mod error;
 mod help;
+mod refs;
 #[cfg(test)]
 mod tests;
 

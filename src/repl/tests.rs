@@ -50,6 +50,20 @@ fn answers() {
             "[ 17/192  0     0      ]\n[ 0       1/96  0      ]\n[ 0       0     17/192 ]",
         ),
         (&["help D"], "usage: D  or  D[i,j]"),
+        // Scene quantities inside expressions: D11 − D22 of the PPP arm is m1.
+        (&["simplify D[1,1]-D[2,2]"], "m1"),
+        (&["let x = D[1,1]", "simplify x - m1"], "m2 + m3"),
+        (&["subs D[1,1] m1=1"], "m2 + m3 + 1"),
+        (&["simplify g[1] - (m1+m2+m3)*g + tau[3] - m3*qdd3"], "0"),
+        (&["simplify C[1,2] + D[1,2]"], "0"),
+        // A variable changes the scene's quantities too.
+        (&["let m1 = 2", "D[1,1]"], "m2 + m3 + 2"),
+        (&["let m1 = 2", "eom 1"], "(m2+m3+2) q̈1 + (m2+m3+2) g = u1"),
+        (
+            &["let m3 = 0", "D"],
+            "[ m1 + m2  0   0 ]\n[ 0        m2  0 ]\n[ 0        0   0 ]",
+        ),
+        (&["let g = 0", "ne body tau 1"], "(m1+m2+m3) q̈1"),
     ];
     for (lines, want) in rows {
         assert_eq!(run(lines).as_deref(), Ok(*want), "{lines:?}");
@@ -74,6 +88,9 @@ fn errors_leave_the_session_running() {
         ("ne body zeta 1", "usage: ne body|inertial omega|alpha|a_c|a_e|g|f|n|tau i"),
         ("let q1 = 2", "`q1` is a joint coordinate; a variable needs another name"),
         ("load x.scene", "`load x.scene` is read by the REPL front end; in the library call `Session::load_scene_text`"),
+        ("simplify D[4,1] + 1", "D[4,1]: the robot has 3 joints"),
+        ("let x = 2*D[0,1]", "D[0,1]: indices start at 1, as in the book (the robot's joints are 1 to 3)"),
+        ("simplify X[1]", "`X[1]` is no scene quantity: write D[i,j], C[i,j], g[k] or tau[k], indices from 1"),
     ];
     let mut s = Session::new();
     for (line, want) in rows {
