@@ -203,3 +203,69 @@ link 2 mass=m2 com=[lc2, 0, 0] inertia=diag(0, 0, I2)
     assert!(standard.contains("f_i \\times r_{i-1,c_i} + (R^{i}_{i+1} f_{i+1}) \\times r_{i,c_i}"));
     assert!(!standard.contains("r_{i,i+1}"));
 }
+
+/// A 3R arm with full diagonal inertias: its first equation was one line of 1,488 characters.
+const ARTICULATED_3R: &str = "robot \"3R articulated\"
+gravity [0, 0, -g]
+joint 1 revolute a=0 alpha=90deg d=d1 theta=q1
+joint 2 revolute a=l2 alpha=0 d=0 theta=q2
+joint 3 revolute a=l3 alpha=0 d=0 theta=q3
+link 1 mass=m1 inertia=diag(I1x, I1y, I1z)
+link 2 mass=m2 com=[lc2-l2,0,0] inertia=diag(I2x,I2y,I2z)
+link 3 mass=m3 com=[lc3-l3,0,0] inertia=diag(I3x,I3y,I3z)
+";
+
+/// `symdyn derive --format latex` breaks long equations: every line of the `align*` stays within
+/// `LINE_WIDTH` character units (the sheet's budget), for the 3R arm and every example but the fully
+/// symbolic PUMA, and pdflatex puts them on the page; short equations keep one row each.
+#[test]
+fn derive_latex_breaks_long_equations() {
+    use symdyn::print::layout::LINE_WIDTH;
+    use symdyn::print::Style;
+    use symdyn::report::{equations, Method};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut sources = vec![("articulated_3r".to_string(), ARTICULATED_3R.to_string())];
+    for name in ["elbow", "rpp", "scara", "stanford", "puma560"] {
+        let text = std::fs::read_to_string(root.join(format!("examples/{name}.scene"))).unwrap();
+        sources.push((name.to_string(), text));
+    }
+    let mut documents = Vec::new();
+    for (name, source) in &sources {
+        let tex = equations(&derivation(source), Method::Lagrange, Style::Latex);
+        for line in tex.lines() {
+            assert!(
+                width(line) <= LINE_WIDTH,
+                "{name}: {} wide: {line}",
+                width(line)
+            );
+        }
+        documents.push((name.clone(), tex));
+    }
+    let rr = equations(&derivation(BUILTIN_PPP), Method::Lagrange, Style::Latex);
+    assert_eq!(rr.lines().count(), 5, "one row per equation: {rr}");
+    let r3 = &documents[0].1;
+    assert!(
+        r3.contains("&\\quad ") && r3.contains("\\intertext{where}"),
+        "{r3}"
+    );
+    let Some(pdflatex) = pdflatex() else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("symdyn-derive-latex-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut problems = Vec::new();
+    for (name, tex) in documents {
+        let doc = format!(
+            "\\documentclass[10pt]{{article}}\n\\usepackage[a4paper,margin=2cm]{{geometry}}\n\
+             \\usepackage{{amsmath,amssymb}}\n\\allowdisplaybreaks\n\\begin{{document}}\n{tex}\\end{{document}}\n"
+        );
+        let log = compile(pdflatex, &dir, &name, &doc);
+        problems.extend(overfull(&log).into_iter().map(|l| format!("{name}: {l}")));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        problems.is_empty(),
+        "off the page:\n{}",
+        problems.join("\n")
+    );
+}

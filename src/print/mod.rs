@@ -32,6 +32,7 @@
 //! Symbol names are described in [`names`].
 
 mod latex;
+pub mod layout;
 pub mod names;
 mod text;
 

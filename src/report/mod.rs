@@ -11,6 +11,7 @@ use crate::algebra::tidy::equation_terms;
 use crate::algebra::{Expr, Poly, Symbol};
 use crate::dynamics::check::Claim;
 use crate::dynamics::{Derivation, Frame};
+use crate::print::layout::Layout;
 use crate::print::{self, Style};
 
 /// Which formulation gives the equations.
@@ -36,8 +37,22 @@ pub fn lhs_terms(tau_k: &Poly) -> Vec<Expr> {
 }
 
 /// The equations of motion, one per line: `(m1+m2+m3) q̈1 + (m1+m2+m3) g = u1`. In LaTeX, an
-/// `align*` environment.
+/// `align*` environment whose lines stay within [`LINE_WIDTH`](crate::print::layout::LINE_WIDTH),
+/// long equations broken across rows ([`Layout::equations`]).
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
+    if style == Style::Latex {
+        let equations: Vec<(Vec<Expr>, String)> = tau(der, method)
+            .iter()
+            .zip(&der.robot().inputs)
+            .map(|(t, u)| {
+                (
+                    lhs_terms(t),
+                    print::to_string(&Expr::sym(Symbol::new(u)), style),
+                )
+            })
+            .collect();
+        return Layout::new().equations(&equations);
+    }
     let lines: Vec<(String, String)> = tau(der, method)
         .iter()
         .zip(&der.robot().inputs)

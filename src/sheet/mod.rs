@@ -2,7 +2,8 @@
 //! Spong, Hutchinson and Vidyasagar, ch. 7 (the scene, Euler–Lagrange, Newton–Euler in body-fixed and
 //! inertial frames, and the proof that the formulations agree). Pure: returns the text, does no I/O.
 //!
-//! - [`layout`]: long expressions kept on the page;
+//! - [`layout`] (shared with `symdyn derive --format latex`, in [`crate::print`]): long expressions
+//!   kept on the page;
 //! - `scene`: the DH table, masses, centres of mass, gravity, inputs, transforms, inertia;
 //! - `lagrange`: `J_v,i`, `J_ω,i`, `D(q)`, Christoffel symbols, `P`, `g(q)`, the equations;
 //! - `newton_euler`: the forward and backward recursions per frame and the equations.
@@ -11,7 +12,7 @@
 //! `texlive-latex-base` and `texlive-latex-recommended`).
 
 mod lagrange;
-pub mod layout;
+pub use crate::print::layout;
 mod newton_euler;
 mod scene;
 

@@ -1,6 +1,8 @@
 //! Long expressions kept on the page: sums broken across lines by estimated printed width, matrices
 //! and vectors that are too wide given entry by entry, and single terms that are too wide replaced by
-//! a named abbreviation (`\Xi_{1}`) that is given, broken term by term, right after.
+//! a named abbreviation (`\Xi_{1}`) that is given, broken term by term, right after. The solution
+//! sheet lays out its displays here, and `symdyn derive --format latex` its `align*` of equations
+//! ([`Layout::equations`]).
 //!
 //! Widths are estimates in "character units" of the LaTeX source: letters, digits and brackets count
 //! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
@@ -10,8 +12,12 @@ use crate::algebra::tidy::{tidy_by, Grouping};
 use crate::algebra::{Expr, Kind, Symbol};
 use crate::print::{self, Style};
 
-/// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80).
-const BUDGET: usize = 66;
+/// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80): the
+/// width every line of a layout stays within (a single factor wider than a line aside).
+pub const LINE_WIDTH: usize = 66;
+
+/// The internal name of [`LINE_WIDTH`].
+const BUDGET: usize = LINE_WIDTH;
 
 /// The estimated printed width of LaTeX math source.
 pub fn width(latex: &str) -> usize {
@@ -94,33 +100,7 @@ impl Layout {
         let mut later: Vec<(String, Expr)> = Vec::new();
         let prefix = lhs.map_or(0, |l| width(l) + 2);
         let room = BUDGET.saturating_sub(prefix).max(20);
-        let pieces: Vec<String> = flat_terms(terms)
-            .iter()
-            .map(|t| self.fit_term(t, room, &mut later))
-            .collect();
-        let mut lines: Vec<String> = Vec::new();
-        let mut line = String::new();
-        let mut used = 0;
-        for (i, p) in pieces.iter().enumerate() {
-            let joined = if i == 0 {
-                p.clone()
-            } else if let Some(rest) = p.strip_prefix('-') {
-                format!(" - {rest}")
-            } else {
-                format!(" + {p}")
-            };
-            let w = width(&joined);
-            if !line.is_empty() && used + w > room {
-                lines.push(std::mem::take(&mut line));
-                used = 0;
-            }
-            used += w;
-            line.push_str(&joined);
-        }
-        if pieces.is_empty() {
-            line.push('0');
-        }
-        lines.push(line);
+        let lines = self.lines(terms, room, &mut later);
         let rhs_text = rhs.map(|r| format!(" = {r}")).unwrap_or_default();
         let mut out = if lines.len() == 1 {
             let l = lhs.map(|l| format!("{l} = ")).unwrap_or_default();
@@ -153,6 +133,117 @@ impl Layout {
             }
         }
         out
+    }
+
+    /// The terms of a sum as LaTeX lines of at most `room` width units: `t1 + t2`, then ` - t3 + t4`
+    /// (each later line starts with its sign). A term wider than `room` has its widest sum factor
+    /// abbreviated, and the abbreviation's name and value are pushed onto `later`. No terms are `0`.
+    fn lines(
+        &mut self,
+        terms: &[Expr],
+        room: usize,
+        later: &mut Vec<(String, Expr)>,
+    ) -> Vec<String> {
+        let pieces: Vec<String> = flat_terms(terms)
+            .iter()
+            .map(|t| self.fit_term(t, room, later))
+            .collect();
+        let mut lines: Vec<String> = Vec::new();
+        let mut line = String::new();
+        let mut used = 0;
+        for (i, p) in pieces.iter().enumerate() {
+            let joined = if i == 0 {
+                p.clone()
+            } else if let Some(rest) = p.strip_prefix('-') {
+                format!(" - {rest}")
+            } else {
+                format!(" + {p}")
+            };
+            let w = width(&joined);
+            if !line.is_empty() && used + w > room {
+                lines.push(std::mem::take(&mut line));
+                used = 0;
+            }
+            used += w;
+            line.push_str(&joined);
+        }
+        if pieces.is_empty() {
+            line.push('0');
+        }
+        lines.push(line);
+        lines
+    }
+
+    /// Equations `Σ terms = rhs` (the terms in display order, `rhs` LaTeX) as one `align*`
+    /// environment. When every equation fits a line, each is one row aligned at `=`:
+    /// `  t1 + t2 &= u_{1}`. Otherwise every row is left-aligned and a long equation runs on over
+    /// rows of at most [`LINE_WIDTH`] (`  & t1 + t2`, `  &\quad + t3 = u_{1}`); a term wider than
+    /// a line has its widest sum factor abbreviated (`\Xi_{1}`), given after `\intertext{where}`.
+    pub fn equations(&mut self, equations: &[(Vec<Expr>, String)]) -> String {
+        let one_line: Vec<(String, &String)> = equations
+            .iter()
+            .map(|(terms, rhs)| (print::sum_to_string(terms, Style::Latex), rhs))
+            .collect();
+        let rows: Vec<String> = if one_line
+            .iter()
+            .all(|(l, r)| width(l) + 2 + width(r) <= BUDGET)
+        {
+            one_line
+                .iter()
+                .map(|(l, r)| format!("  {l} &= {r}"))
+                .collect()
+        } else {
+            let mut later: Vec<(String, Expr)> = Vec::new();
+            let mut rows: Vec<String> = Vec::new();
+            for (terms, rhs) in equations {
+                let end = format!(" = {rhs}");
+                rows.extend(self.left_rows(terms, &end, &mut later));
+            }
+            let mut first = true;
+            while !later.is_empty() {
+                for (name, e) in std::mem::take(&mut later) {
+                    let start = format!("{name} = ");
+                    let mut these = self.left_rows(std::slice::from_ref(&e), "", &mut later);
+                    these[0] = these[0].replacen("  & ", &format!("  & {start}"), 1);
+                    if first {
+                        these[0] = format!("  \\intertext{{where}}\n{}", these[0]);
+                        first = false;
+                    }
+                    rows.extend(these);
+                }
+            }
+            rows
+        };
+        format!(
+            "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+            rows.join(" \\\\\n")
+        )
+    }
+
+    /// The rows `  & line` and `  &\quad line` of one left-aligned sum ending with `end`, each at
+    /// most [`LINE_WIDTH`] wide.
+    fn left_rows(
+        &mut self,
+        terms: &[Expr],
+        end: &str,
+        later: &mut Vec<(String, Expr)>,
+    ) -> Vec<String> {
+        // Room for `\quad` (2), the end, and an abbreviation's `\Xi_{k} = ` (6) on the first row.
+        let room = BUDGET.saturating_sub(width(end) + 8).max(20);
+        let lines = self.lines(terms, room, later);
+        let last = lines.len() - 1;
+        lines
+            .iter()
+            .enumerate()
+            .map(|(i, line)| {
+                let end = if i == last { end } else { "" };
+                if i == 0 {
+                    format!("  & {line}{end}")
+                } else {
+                    format!("  &\\quad {}{end}", line.trim_start())
+                }
+            })
+            .collect()
     }
 
     /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
