@@ -256,3 +256,104 @@ fn physics_mistakes_are_said_with_their_fix() {
     assert_eq!((code, out.as_str()), (1, ""));
     assert!(err.contains("negative.scene:3:13: the mass of link 1 is -2, negative: a mass is at least 0 (write `mass=2`)"), "{err}");
 }
+
+/// A 3R arm whose joint angles are fractions of the coordinates, to which `check` and the numbers
+/// are held (the base angles q2/2 and q3/4 carry the whole derivation).
+const FRACTIONAL: &str = "gravity [0, 0, -g]
+joint 1 revolute a=0 alpha=90deg d=d1 theta=0.5*q1
+joint 2 revolute a=l2 alpha=0 d=0 theta=q2/2 + pi/4
+joint 3 revolute a=l3 alpha=0 d=0 theta=3*q3/4
+link 1 mass=m1 inertia=diag(I1x, I1y, I1z)
+link 2 mass=m2 com=[lc2-l2,0,0] inertia=diag(I2x,I2y,I2z)
+link 3 mass=m3 com=[lc3-l3,0,0] inertia=diag(I3x,I3y,I3z)
+";
+
+/// `theta=q1/2` (or `0.5*q1`, `3*q3/4`) passes `check`: sin²(q2/2) + cos²(q2/2) is 1 and the
+/// zero test relates the halves, so Euler–Lagrange equals Newton–Euler; τ equals the independent
+/// nalgebra Newton–Euler at random states. An irrational or symbolic rate is refused with the fix.
+#[test]
+fn fractional_joint_rates_are_exact() {
+    use std::collections::HashMap;
+    use symdyn::algebra::Symbol;
+    use symdyn::dynamics::check::check;
+    use symdyn::dynamics::numeric::inverse_dynamics;
+    use symdyn::dynamics::Derivation;
+    use symdyn::numeric::{compile, robot_parameters};
+
+    let der = Derivation::new(symdyn::parse::parse_scene(FRACTIONAL).unwrap().robot).unwrap();
+    for claim in check(&der) {
+        assert!(claim.holds, "{}: {:?}", claim.statement, claim.failures);
+    }
+    let params: HashMap<Symbol, f64> = robot_parameters(der.robot())
+        .into_iter()
+        .enumerate()
+        .map(|(i, s)| (s, 0.6 + 0.1 * i as f64))
+        .collect();
+    let mut tau = compile(&der.lagrange().tau, 3)
+        .unwrap()
+        .bind(&params)
+        .unwrap();
+    for (q, qd, qdd) in [
+        ([0.3, -1.1, 2.0], [0.5, -0.7, 1.2], [1.0, 0.2, -0.4]),
+        ([2.9, 0.4, -2.2], [-1.5, 0.9, 0.1], [-0.3, 1.1, 0.6]),
+    ] {
+        let ours = tau.eval(&q, &qd, &qdd).unwrap().to_vec();
+        let rnea = inverse_dynamics(der.robot(), &params, &q, &qd, &qdd).unwrap();
+        for (a, b) in ours.iter().zip(&rnea) {
+            assert!(
+                (a - b).abs() <= 1e-10 * (1.0 + b.abs()),
+                "{ours:?} vs {rnea:?}"
+            );
+        }
+    }
+    let (out, err, code) = symdyn(&["check", &scene_file("fractional.scene", FRACTIONAL)]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert_eq!(out.matches("proved:").count(), 4, "{out}");
+    let (out, _, _) = symdyn(&[
+        "simplify",
+        "sin(q1/2)^2 + cos(1/2*q1)^2 - (sin(q1) - 2*sin(q1/2)*cos(q1/2))",
+    ]);
+    assert_eq!(out, "1\n");
+    for (rate, says) in [
+        ("q1*pi", "at the rate pi, which is not a rational number"),
+        ("k*q1", "at the rate k, which is not a rational number"),
+        ("1000*q1", "at the rate 1000: sin and cos of that multiple"),
+    ] {
+        let scene = FRACTIONAL.replace("theta=0.5*q1", &format!("theta={rate}"));
+        let (_, err, code) = symdyn(&["check", &scene_file("rate.scene", &scene)]);
+        assert_eq!(code, 1, "{rate}");
+        assert!(
+            err.contains(says) && err.contains("rate.scene:2:"),
+            "{rate}: {err}"
+        );
+    }
+}
+
+/// Powers, expansions and multiple angles cost what their answers cost, and an answer beyond the
+/// size limits is a clear error on every path (simplify, expand, subs, a scene), never a hang or an
+/// abort on memory.
+#[test]
+fn blow_ups_are_refused_or_cheap() {
+    let (out, err, code) = symdyn(&["expand", "(a+b)^25", "--ascii"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.matches(" + ").count(), 25, "26 terms: {out}");
+    assert!(out.contains("5200300*a^12*b^13"), "{out}");
+    let (out, _, code) = symdyn(&[
+        "simplify",
+        "(sin(q1) + cos(q1))^40 - (1 + 2*sin(q1)*cos(q1))^20",
+    ]);
+    assert_eq!((code, out.as_str()), (0, "0\n"));
+    let rows: &[(&[&str], &str)] = &[
+        (&["simplify", "sin(q1)^99999999 + cos(q1)^2"], "`sin(q1)^99999999` would expand into about 50000000 terms, more than the limit of 1000000"),
+        (&["subs", "x^99999999", "x=2"], "`2^99999999` would hold a number of about 199999998 bits, more than the limit of 2048 bits"),
+        (&["simplify", "2^99999999"], "number too large"),
+        (&["expand", "(a+b)^5000"], "would hold a number of about 5000 bits"),
+        (&["simplify", "sin(99999*q1) - cos(q1)"], "`sin(99999*q1)` would hold a number of about 100001 bits"),
+        (&["simplify", "(a+b+c+d+e+f+g+h+i+j)^25"], "would expand into about"),
+    ];
+    for (args, says) in rows {
+        let (out, err, code) = symdyn(args);
+        assert_eq!((code, out.as_str()), (1, ""), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+    }
+}

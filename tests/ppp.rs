@@ -104,7 +104,7 @@ fn inertia_matrix_4_christoffel_potential_5_gravity_6() {
         el.d.iter()
             .map(|r| {
                 r.iter()
-                    .map(|p| symdyn::algebra::simplify(&p.to_expr()))
+                    .map(|p| symdyn::algebra::tidy::tidy(&p.to_expr()))
                     .collect()
             })
             .collect();
@@ -116,11 +116,11 @@ fn inertia_matrix_4_christoffel_potential_5_gravity_6() {
     assert!(der.facts().contains(&Fact::PrismaticOnly));
     assert_snap!(
         "eq5_potential",
-        symdyn::print::to_string(&symdyn::algebra::simplify(&el.p.to_expr()), Style::Text)
+        symdyn::print::to_string(&symdyn::algebra::tidy::tidy(&el.p.to_expr()), Style::Text)
     );
     let g: Vec<Expr> =
         el.g.iter()
-            .map(|p| symdyn::algebra::simplify(&p.to_expr()))
+            .map(|p| symdyn::algebra::tidy::tidy(&p.to_expr()))
             .collect();
     assert_snap!("eq6_gravity", vector_to_string(&g, Style::Text));
 }

@@ -1,8 +1,9 @@
 //! Atoms of the polynomial normal form, interned to small integer ids.
 //!
-//! An atom is a symbol, π, a surd `sqrt(k)`, `sin x` or `cos x` of an angle symbol `x`, or an opaque
-//! canonical [`Expr`] that the normal form does not look into (a negative power of a sum, `sin` of a
-//! non-linear argument). The id of an atom carries its class in the top bits, so the hot loops of
+//! An atom is a symbol, π, a surd `sqrt(k)`, `sin x` or `cos x` of an angle symbol `x` (or of a base
+//! angle `x/L`, for a symbol that appears with fractional multiples), or an opaque canonical [`Expr`]
+//! that the normal form does not look into (a negative power of a sum, `sin` of a non-linear
+//! argument). The id of an atom carries its class in the top bits, so the hot loops of
 //! polynomial multiplication can spot `sin x` and find `cos x` without a lookup: both share the serial
 //! number of `x`.
 //!
@@ -11,6 +12,7 @@
 //! the structural order) before anyone sees it.
 
 use super::expr::Expr;
+use super::number::Rational;
 use super::symbol::Symbol;
 use num_bigint::BigInt;
 use std::collections::HashMap;
@@ -50,8 +52,11 @@ pub enum Atom {
     Pi,
     /// `sqrt(k)`, `k` square-free and at least 2.
     Sqrt(BigInt),
-    /// An opaque canonical expression.
+    /// An opaque canonical expression; also the constant angle of `sin`/`cos` atoms of a constant.
     Other(Expr),
+    /// The angle `symbol / over` (`over >= 2`) of a `sin`/`cos` atom pair: the base angle of a symbol
+    /// that appears with fractional multiples (`sin(q1/2)`, see `normal`).
+    Angle(Symbol, u64),
 }
 
 #[derive(Default)]
@@ -124,6 +129,32 @@ pub fn cos(x: &Symbol) -> AtomId {
     make(Class::Cos, serial_of(Atom::Sym(x.clone())))
 }
 
+/// The id of `sin(x/over)`: `sin x` itself for `over = 1`, else the base angle pair of `x/over`.
+pub fn sin_over(x: &Symbol, over: u64) -> AtomId {
+    match over {
+        1 => sin(x),
+        _ => make(Class::Sin, serial_of(Atom::Angle(x.clone(), over))),
+    }
+}
+
+/// The id of `cos(x/over)`, the partner of [`sin_over`].
+pub fn cos_over(x: &Symbol, over: u64) -> AtomId {
+    partner(sin_over(x, over))
+}
+
+/// For a `Sin`/`Cos` id of a symbol's angle, the symbol `x` and the `over` of the angle `x/over`
+/// (1 for `sin x`); `None` for other ids and constant angles.
+pub fn angle_of(id: AtomId) -> Option<(Symbol, u64)> {
+    if !matches!(class(id), Class::Sin | Class::Cos) {
+        return None;
+    }
+    match lookup(id) {
+        Atom::Sym(s) => Some((s, 1)),
+        Atom::Angle(s, over) => Some((s, over)),
+        _ => None,
+    }
+}
+
 /// The id of `sin c` for a constant angle `c` (a positive rational, or `r π` with `0 < r < 1/4`);
 /// its partner is `cos c`.
 pub fn sin_const(c: &Expr) -> AtomId {
@@ -149,10 +180,11 @@ pub fn partner(id: AtomId) -> AtomId {
     }
 }
 
-/// The symbol of a `Param`/`Coord` id, or the angle of a `Sin`/`Cos` id.
+/// The symbol of a `Param`/`Coord` id, or the symbol of the angle of a `Sin`/`Cos` id (`q1` for
+/// `sin q1` and for `sin(q1/2)`).
 pub fn symbol_of(id: AtomId) -> Option<Symbol> {
     match lookup(id) {
-        Atom::Sym(s) => Some(s),
+        Atom::Sym(s) | Atom::Angle(s, _) => Some(s),
         _ => None,
     }
 }
@@ -170,9 +202,18 @@ pub fn to_expr(id: AtomId) -> Expr {
         (Class::Cos, Atom::Sym(s)) => Expr::cos(&Expr::sym(s)),
         (Class::Sin, Atom::Other(c)) => Expr::sin(&c),
         (Class::Cos, Atom::Other(c)) => Expr::cos(&c),
+        (Class::Sin, Atom::Angle(s, over)) => Expr::sin(&angle(&s, over)),
+        (Class::Cos, Atom::Angle(s, over)) => Expr::cos(&angle(&s, over)),
+        (_, Atom::Angle(s, over)) => angle(&s, over),
         (_, Atom::Sym(s)) => Expr::sym(s),
         (_, Atom::Pi) => Expr::pi(),
         (_, Atom::Sqrt(k)) => Expr::sqrt(&Expr::num(k.into())).expect("positive radicand"),
         (_, Atom::Other(e)) => e,
     }
+}
+
+/// The angle `x/over` as an expression.
+fn angle(x: &Symbol, over: u64) -> Expr {
+    let over = Rational::from(num_bigint::BigInt::from(over));
+    Expr::sym(x.clone()).scale(&over.recip().expect("over >= 2"))
 }

@@ -8,6 +8,7 @@
 use super::atom::{self, Class};
 use super::expr::{Expr, Func, Kind};
 use super::normal::to_poly;
+use super::number::Rational;
 use super::poly::Poly;
 use super::symbol::Symbol;
 
@@ -66,18 +67,37 @@ pub fn dt(e: &Expr) -> Expr {
     walk(e, &|s| s.time_derivative().map(Expr::sym))
 }
 
+/// The derivative of the `sin`/`cos` atom `id` of the angle `x/over` by its angle's symbol:
+/// `cos(x/over)/over` or `−sin(x/over)/over`.
+fn trig_rate(id: atom::AtomId, over: u64) -> Poly {
+    let partner = Poly::atom(atom::partner(id));
+    let d = if atom::class(id) == Class::Sin {
+        partner
+    } else {
+        partner.neg()
+    };
+    match over {
+        1 => d,
+        _ => d.scale(
+            &Rational::from(num_bigint::BigInt::from(over))
+                .recip()
+                .expect("over >= 2"),
+        ),
+    }
+}
+
 /// `∂p/∂x` on the normal form.
 pub fn poly_diff(p: &Poly, x: &Symbol) -> Poly {
     let x_id = atom::sym(x);
-    let sin_id = atom::sin(x);
-    let cos_id = atom::cos(x);
     p.derive(&mut |id| {
         if id == x_id {
             return Some(Poly::one());
         }
         match atom::class(id) {
-            Class::Sin if id == sin_id => Some(Poly::atom(cos_id)),
-            Class::Cos if id == cos_id => Some(Poly::atom(sin_id).neg()),
+            Class::Sin | Class::Cos => match atom::angle_of(id) {
+                Some((y, over)) if &y == x => Some(trig_rate(id, over)),
+                _ => None,
+            },
             Class::Other => match atom::lookup(id) {
                 atom::Atom::Other(e) if e.contains(x) => Some(to_poly(&diff(&e, x))),
                 _ => None,
@@ -95,14 +115,9 @@ pub fn poly_dt(p: &Poly) -> Poly {
             Some(Poly::symbol(&s.time_derivative()?))
         }
         Class::Sin | Class::Cos => {
-            let x = atom::symbol_of(id)?;
+            let (x, over) = atom::angle_of(id)?;
             let xd = Poly::symbol(&x.time_derivative()?);
-            let d = if atom::class(id) == Class::Sin {
-                Poly::atom(atom::partner(id))
-            } else {
-                Poly::atom(atom::partner(id)).neg()
-            };
-            Some(d.mul(&xd))
+            Some(trig_rate(id, over).mul(&xd))
         }
         Class::Other => match atom::lookup(id) {
             atom::Atom::Other(e) => {

@@ -20,4 +20,23 @@ pub enum AlgebraError {
     /// A number too large to handle (such as an exponent beyond 2^31).
     #[error("number too large: {0}")]
     TooLarge(String),
+    /// A result whose numbers would pass [`MAX_NUMBER_BITS`](super::limits::MAX_NUMBER_BITS).
+    #[error("`{what}` would hold a number of about {bits} bits, more than the limit of {} bits (about 600 digits)", super::limits::MAX_NUMBER_BITS)]
+    NumberTooLarge {
+        /// The operation, as the parser reads it.
+        what: String,
+        /// The estimated size of its largest number, in bits.
+        bits: String,
+    },
+    /// An expansion that would produce more than [`MAX_TERMS`](super::limits::MAX_TERMS) terms.
+    #[error(
+        "`{what}` would expand into about {terms} terms, more than the limit of {}",
+        super::limits::MAX_TERMS
+    )]
+    TooManyTerms {
+        /// The operation, as the parser reads it.
+        what: String,
+        /// The estimated number of terms.
+        terms: String,
+    },
 }

@@ -211,7 +211,9 @@ impl Expr {
         Expr::make(Kind::Fun(f, arg))
     }
 
-    /// `self^e` for an integer exponent; an error for `0^e` with `e < 0`.
+    /// `self^e` for an integer exponent; an error for `0^e` with `e < 0`, and for a result beyond the
+    /// [size limits](super::limits): a number of more than `MAX_NUMBER_BITS` bits (`2^99999999`) or an
+    /// exponent beyond `MAX_EXPONENT`, refused before anything is computed.
     pub fn pow(&self, e: i64) -> Result<Expr, AlgebraError> {
         if e == 0 {
             return Ok(Expr::one());
@@ -219,6 +221,7 @@ impl Expr {
         if e == 1 {
             return Ok(self.clone());
         }
+        self.check_power(e)?;
         match self.kind() {
             Kind::Num(r) => r.pow(e).map(Expr::num).ok_or(AlgebraError::DivisionByZero),
             Kind::Mul(c, fs) => {
@@ -226,10 +229,8 @@ impl Expr {
                 let mut factors = Vec::with_capacity(fs.len() + 1);
                 factors.push(Expr::num(coeff));
                 for (b, k) in fs {
-                    let exp = k
-                        .checked_mul(e)
-                        .ok_or_else(|| AlgebraError::TooLarge(format!("exponent {k}·{e}")))?;
-                    factors.push(Expr::power_unchecked(b.clone(), exp));
+                    // Within MAX_EXPONENT, checked above.
+                    factors.push(Expr::power_unchecked(b.clone(), k * e));
                 }
                 Ok(Expr::product(factors))
             }
@@ -240,6 +241,38 @@ impl Expr {
                 Ok(Expr::product([Expr::power_unchecked(self.clone(), e)]))
             }
         }
+    }
+
+    /// Refuses `self^e` when its numbers or exponents would pass the size limits.
+    fn check_power(&self, e: i64) -> Result<(), AlgebraError> {
+        use super::limits::{check_bits, growing_bits, MAX_EXPONENT};
+        let root = |k: &BigInt| u128::from(k.bits()) / 2 + 1;
+        let (per_unit, largest_exponent) = match self.kind() {
+            Kind::Num(r) => (u128::from(growing_bits(r)), 1),
+            Kind::Sqrt(k) => (root(k), 1),
+            Kind::Mul(c, fs) => {
+                let roots: u128 = fs
+                    .iter()
+                    .map(|(b, _)| match b.kind() {
+                        Kind::Sqrt(k) => root(k),
+                        _ => 0,
+                    })
+                    .sum();
+                let k = fs.iter().map(|(_, k)| k.unsigned_abs()).max().unwrap_or(1);
+                (u128::from(growing_bits(c)) + roots, k)
+            }
+            Kind::Add(..) => (u128::from(growing_bits(&primitive_base(self).1)), 1),
+            Kind::Sym(_) | Kind::Pi | Kind::Fun(..) => (0, 1),
+        };
+        let what = || super::limits::power_text(self, e);
+        let exponent = u128::from(largest_exponent) * u128::from(e.unsigned_abs());
+        if exponent > u128::from(MAX_EXPONENT) {
+            return Err(AlgebraError::TooLarge(format!(
+                "the exponent {exponent} of `{}` is beyond {MAX_EXPONENT}",
+                what()
+            )));
+        }
+        check_bits(what, per_unit.saturating_mul(u128::from(e.unsigned_abs())))
     }
 
     /// `self / other`; an error when `other` is structurally zero.

@@ -14,6 +14,7 @@ pub mod eval;
 pub mod expand;
 pub mod expr;
 pub(crate) mod fast_hash;
+pub mod limits;
 pub mod normal;
 pub mod number;
 pub mod poly;

@@ -13,13 +13,14 @@
 //! canonically, so nothing printed depends on the internal order.
 
 use super::atom::{self, AtomId, Class};
+use super::error::AlgebraError;
 use super::expr::Expr;
 use super::fast_hash::FxHashMap;
 use super::number::{split_square, Rational};
 use super::symbol::Symbol;
 use num_bigint::BigInt;
 use num_traits::One;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 /// A monomial: atoms with non-zero integer exponents, sorted by id.
@@ -482,21 +483,160 @@ impl Poly {
         })
     }
 
-    /// `self^e` for `e >= 0`.
+    /// `self^e` for `e >= 0`, at the cost of its answer: one term is raised directly, a sum is
+    /// squared by [`Poly::mul`] or expanded by the multinomial theorem (one product per term of the
+    /// answer, no intermediate powers), each product reduced as it is collected.
+    ///
+    /// Nothing is refused here (the compact Newton–Euler raises its own small intermediates); for a
+    /// power of untrusted size call [`Poly::try_pow`]. Panics if an exponent of the result passes
+    /// `i32`, which `try_pow` refuses instead.
     pub fn pow(&self, e: u32) -> Poly {
-        let mut acc = Poly::one();
-        let mut base = self.clone();
-        let mut e = e;
-        while e > 0 {
-            if e & 1 == 1 {
-                acc = acc.mul(&base);
-            }
-            e >>= 1;
-            if e > 0 {
-                base = base.mul(&base);
+        match (e, self.terms.as_slice()) {
+            (0, _) => Poly::one(),
+            (_, []) => Poly::zero(),
+            (1, _) => self.clone(),
+            (_, [(m, c)]) => Poly::term(
+                Mono::from_sorted(m.0.iter().map(|&(id, k)| (id, scaled(k, e))).collect()),
+                c.pow(i64::from(e))
+                    .expect("a term's coefficient is not zero"),
+            ),
+            (2, _) => self.mul(self),
+            _ => self.multinomial(e),
+        }
+    }
+
+    /// `self^e` as [`Poly::pow`] computes it, refused when its cost passes the
+    /// [size limits](super::limits): more than `MAX_TERMS` products to collect (a composition of `e`
+    /// into the terms, times what reducing `sin^k x` to `(1 − cos² x)^(k/2)` makes of each), numbers
+    /// beyond `MAX_NUMBER_BITS`, or an exponent beyond `MAX_EXPONENT`. The estimate comes before any
+    /// work.
+    pub fn try_pow(&self, e: u32) -> Result<Poly, AlgebraError> {
+        self.check_pow(e)?;
+        Ok(self.pow(e))
+    }
+
+    /// The size limits of `self^e` (see [`Poly::try_pow`]).
+    fn check_pow(&self, e: u32) -> Result<(), AlgebraError> {
+        use super::limits::{check_bits, check_terms, compositions, growing_bits, MAX_EXPONENT};
+        if e <= 1 || self.terms.is_empty() {
+            return Ok(());
+        }
+        let what = || super::limits::power_text(&self.to_expr(), i64::from(e));
+        let e128 = u128::from(e);
+        let mut largest_exponent = 0u128;
+        // Per atom: its largest positive exponent in a term, for the reductions.
+        let mut sin_exponent: BTreeMap<AtomId, u128> = BTreeMap::new();
+        let mut surd_bits = 0u128;
+        let mut coefficient_bits = 0u128;
+        for (m, c) in &self.terms {
+            coefficient_bits = coefficient_bits.max(u128::from(growing_bits(c)));
+            for &(id, k) in m.0.iter() {
+                largest_exponent = largest_exponent.max(u128::from(k.unsigned_abs()));
+                match atom::class(id) {
+                    Class::Sin if k > 0 => {
+                        let x = sin_exponent.entry(id).or_default();
+                        *x = (*x).max(k as u128);
+                    }
+                    Class::Sqrt => {
+                        let atom::Atom::Sqrt(r) = atom::lookup(id) else {
+                            unreachable!("class Sqrt holds a surd")
+                        };
+                        surd_bits = surd_bits.max(u128::from(r.bits()) / 2 + 1);
+                    }
+                    _ => {}
+                }
             }
         }
-        acc
+        if largest_exponent * e128 > u128::from(MAX_EXPONENT) {
+            return Err(AlgebraError::TooLarge(format!(
+                "the exponent {} in `{}` is beyond {MAX_EXPONENT}",
+                largest_exponent * e128,
+                what()
+            )));
+        }
+        let m = self.terms.len() as u64;
+        let products = if e == 2 {
+            u128::from(m) * u128::from(m)
+        } else {
+            compositions(u64::from(e), m - 1)
+        };
+        let reductions = sin_exponent
+            .values()
+            .fold(1u128, |acc, k| acc.saturating_mul(k * e128 / 2 + 1));
+        check_terms(what, products.saturating_mul(reductions))?;
+        // Coefficients: c^e, a multinomial coefficient below m^e, binomials of the reduction below
+        // 2^(k e / 2), powers of surds.
+        let log_m = u128::from(64 - (m - 1).leading_zeros());
+        let halves: u128 = sin_exponent.values().map(|k| k / 2 + 1).sum();
+        let per_unit = coefficient_bits + log_m + halves + surd_bits;
+        check_bits(what, per_unit.saturating_mul(e128))
+    }
+
+    /// `self^e` by the multinomial theorem, `e >= 3` and at least two terms: every composition
+    /// `k_1 + … + k_m = e` gives `e!/(k_1! … k_m!) Π (c_i t_i)^(k_i)`, enumerated depth first without
+    /// recursion (level `i` chooses `k_i`, the last level takes what is left).
+    fn multinomial(&self, e: u32) -> Poly {
+        let m = self.terms.len();
+        let last = m - 1;
+        // powers[i][k] = (t_i^k, c_i^k).
+        let powers: Vec<Vec<ScaledTerm>> = self
+            .terms
+            .iter()
+            .map(|(t, c)| {
+                let mut out = Vec::with_capacity(e as usize + 1);
+                let mut coeff = Rational::one();
+                for k in 0..=e {
+                    let factors = match k {
+                        0 => Vec::new(),
+                        _ => t.0.iter().map(|&(id, x)| (id, scaled(x, k))).collect(),
+                    };
+                    out.push((factors, coeff.clone()));
+                    coeff = &coeff * c;
+                }
+                out
+            })
+            .collect();
+        let mut acc = Accumulator::with_capacity(m);
+        // At level i: the product of the choices of the levels before, its coefficient, what is
+        // left to choose, the choice k_i and the binomial C(rem_i, k_i).
+        let mut mono: Vec<Vec<(AtomId, i32)>> = vec![Vec::new(); m];
+        let mut coef: Vec<Rational> = vec![Rational::one(); m];
+        let mut rem: Vec<u32> = vec![e; m];
+        let mut k: Vec<u32> = vec![0; m];
+        let mut binom: Vec<Rational> = vec![Rational::one(); m];
+        let mut buf = Vec::new();
+        let mut level = 0;
+        loop {
+            if level < last {
+                let (pm, pc) = &powers[level][k[level] as usize];
+                mul_into(&mono[level], pm, &mut buf);
+                mono[level + 1].clone_from(&buf);
+                coef[level + 1] = &(&coef[level] * &binom[level]) * pc;
+                rem[level + 1] = rem[level] - k[level];
+                level += 1;
+                k[level] = 0;
+                binom[level] = Rational::one();
+                continue;
+            }
+            let (pm, pc) = &powers[level][rem[level] as usize];
+            mul_into(&mono[level], pm, &mut buf);
+            acc.add_product(&buf, &coef[level] * pc);
+            loop {
+                if level == 0 {
+                    return acc.finish();
+                }
+                level -= 1;
+                if k[level] < rem[level] {
+                    k[level] += 1;
+                    // C(r, k) = C(r, k − 1) (r − k + 1)/k
+                    let step =
+                        Rational::new(i64::from(rem[level] - k[level] + 1), i64::from(k[level]))
+                            .expect("k >= 1");
+                    binom[level] = &binom[level] * &step;
+                    break;
+                }
+            }
+        }
     }
 
     /// The sum of many polynomials.
@@ -584,6 +724,15 @@ impl Poly {
             .collect();
         Expr::sum(terms)
     }
+}
+
+/// A term as a factor list and its coefficient.
+type ScaledTerm = (Vec<(AtomId, i32)>, Rational);
+
+/// An atom's exponent `x` raised to the power `e`; panics beyond `i32` (see [`Poly::pow`]).
+fn scaled(x: i32, e: u32) -> i32 {
+    i32::try_from(i64::from(x) * i64::from(e))
+        .expect("an exponent within i32 (Poly::try_pow refuses larger)")
 }
 
 /// Collects terms, adding equal monomials.
@@ -804,6 +953,61 @@ mod tests {
         }));
         assert_eq!(by_cos, want);
         assert!(sorted(&by_cos));
+    }
+
+    /// The multinomial power equals repeated multiplication, reductions (sin², surds) included.
+    #[test]
+    fn powers_by_the_multinomial_theorem() {
+        let p = |s: &str| to_poly(&crate::parse::parse_expr(s).unwrap());
+        for (base, e) in [
+            ("a + b", 7),
+            ("sin(q1) + cos(q1) + m", 5),
+            ("1/2*x - 3*y + sqrt(2)", 4),
+            ("sin(q1)*cos(q2) - sin(q2) + 2", 3),
+            ("x + y + z + w", 3),
+            ("3*sin(q1)", 6),
+        ] {
+            let b = p(base);
+            let mut want = Poly::one();
+            for _ in 0..e {
+                want = want.mul(&b);
+            }
+            assert_eq!(b.pow(e), want, "({base})^{e}");
+            assert_eq!(b.try_pow(e).as_ref(), Ok(&want), "({base})^{e}");
+            assert!(sorted(&b.pow(e)));
+        }
+        let binomial = p("a + b").pow(25);
+        assert_eq!(binomial.len(), 26);
+        assert!(binomial
+            .terms()
+            .iter()
+            .any(|(_, c)| *c == Rational::int(5_200_300)));
+    }
+
+    /// Powers whose answers pass the limits are refused before any work, with what and how much.
+    #[test]
+    fn powers_beyond_the_limits_are_refused() {
+        let p = |s: &str| to_poly(&crate::parse::parse_expr(s).unwrap());
+        let rows: &[(&str, u32, &str)] = &[
+            (
+                "sin(q1)",
+                99_999_999,
+                "would expand into about 50000000 terms",
+            ),
+            ("a + b", 3000, "would hold a number of about 3000 bits"),
+            (
+                "a+b+c+d+e+f+g+h+i+j",
+                20,
+                "would expand into about 10015005 terms",
+            ),
+            ("x^1000 + y", 3_000_000, "beyond 2147483647"),
+        ];
+        for (base, e, says) in rows {
+            let err = p(base).try_pow(*e).unwrap_err().to_string();
+            assert!(err.contains(says), "({base})^{e}: {err}");
+        }
+        assert!(p("cos(q1)").try_pow(99_999_999).is_ok());
+        assert!(p("a + b").try_pow(2000).is_ok());
     }
 
     #[test]

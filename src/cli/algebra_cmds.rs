@@ -22,6 +22,11 @@ fn line(e: &Expr, ascii: bool) -> String {
     format!("{}\n", print::to_string(e, style(ascii)))
 }
 
+/// The result of an algebra operation, or its error in words.
+fn checked(result: Result<Expr, algebra::AlgebraError>) -> Result<Expr, CliError> {
+    result.map_err(|err| CliError::Input(format!("error: {err}")))
+}
+
 /// A variable name: a parameter or a coordinate (`q1`, `qd1`, `qdd1`, `q̇1`).
 fn variable(text: &str) -> Result<Symbol, CliError> {
     let e = parse(text, "<variable>")?;
@@ -32,7 +37,10 @@ fn variable(text: &str) -> Result<Symbol, CliError> {
 
 /// `symdyn simplify`.
 pub fn simplify(text: &str, ascii: bool) -> Result<String, CliError> {
-    Ok(line(&algebra::simplify(&parse(text, "<expr>")?), ascii))
+    Ok(line(
+        &checked(algebra::simplify(&parse(text, "<expr>")?))?,
+        ascii,
+    ))
 }
 
 /// `symdyn diff`.
@@ -51,7 +59,10 @@ pub fn dt(text: &str, ascii: bool) -> Result<String, CliError> {
 
 /// `symdyn expand`.
 pub fn expand(text: &str, ascii: bool) -> Result<String, CliError> {
-    Ok(line(&algebra::expand(&parse(text, "<expr>")?), ascii))
+    Ok(line(
+        &checked(algebra::expand(&parse(text, "<expr>")?))?,
+        ascii,
+    ))
 }
 
 /// `symdyn latex`.
@@ -98,5 +109,5 @@ pub fn subs(
         return Ok(format!("{x}\n"));
     }
     let v = algebra::subs(&e, &exact).map_err(|err| CliError::Input(format!("error: {err}")))?;
-    Ok(line(&algebra::simplify(&v), ascii))
+    Ok(line(&checked(algebra::simplify(&v))?, ascii))
 }

@@ -19,13 +19,8 @@ use std::ops::Range;
 use std::sync::LazyLock;
 
 /// The largest exact number the parser builds, in bits of numerator plus denominator (about 600 decimal
-/// digits). Far beyond any robot model's needs; the bound keeps the algebra core's hashing of big
-/// rationals (which recurses along their continued fraction) well inside the stack.
-pub(crate) const MAX_NUMBER_BITS: u64 = 2048;
-
-/// The largest exponent of a result, as `Expr::integer_exponent` allows for an exponent's value:
-/// below it, sums and products of exponents in the core cannot overflow.
-const MAX_EXPONENT: u64 = i32::MAX as u64;
+/// digits), and the largest exponent of a result: the core's limits ([`crate::algebra::limits`]).
+pub(crate) use crate::algebra::limits::{MAX_EXPONENT, MAX_NUMBER_BITS};
 
 /// The highest derivative order a name `qN_dK` may state: one below the largest order a symbol holds,
 /// so that the time derivative of anything read is still exact.
@@ -158,9 +153,7 @@ fn power(input: &str, base: &Spanned, exponent: &Spanned) -> Result<Expr, ParseE
         .expr
         .integer_exponent()
         .map_err(|err| algebra_error(input, err, exponent.span.clone()))?;
-    if power_bits(&base.expr, e) > u128::from(MAX_NUMBER_BITS) {
-        return Err(ParseError::new(ParseErrorKind::NumberTooLarge, input, span));
-    }
+    // The core refuses, before computing, a power beyond the size limits (`2^2147483647`).
     let value = base
         .expr
         .pow(e)
@@ -168,47 +161,7 @@ fn power(input: &str, base: &Spanned, exponent: &Spanned) -> Result<Expr, ParseE
     checked(input, value, &span)
 }
 
-/// An upper bound on the bits of the numbers that `base^e` computes (the coefficient, and the powers
-/// of square roots that become rational), so that `2^2147483647` is refused before it is attempted.
-fn power_bits(base: &Expr, e: i64) -> u128 {
-    let root = |k: &num_bigint::BigInt| u128::from(k.bits()) / 2 + 1;
-    let per_unit = match base.kind() {
-        Kind::Num(r) => growing_bits(r),
-        Kind::Sqrt(k) => root(k),
-        Kind::Mul(c, fs) => {
-            growing_bits(c)
-                + fs.iter()
-                    .map(|(b, _)| match b.kind() {
-                        Kind::Sqrt(k) => root(k),
-                        _ => 0,
-                    })
-                    .sum::<u128>()
-        }
-        Kind::Sym(_) | Kind::Pi | Kind::Add(..) | Kind::Fun(..) => 0,
-    };
-    per_unit.saturating_mul(u128::from(e.unsigned_abs()))
-}
-
-/// The bits of the parts of `r` that grow in a power: a numerator or denominator of 1 does not.
-fn growing_bits(r: &Rational) -> u128 {
-    let (n, d) = (r.numer(), r.denom());
-    let part = |k: &num_bigint::BigInt| {
-        if k.magnitude().bits() > 1 {
-            u128::from(k.bits())
-        } else {
-            0
-        }
-    };
-    part(&n) + part(&d)
-}
-
-/// The bits of a rational's numerator and denominator.
-fn bits(r: &Rational) -> u64 {
-    match r.as_small() {
-        Some((n, d)) => u64::from(128 - n.unsigned_abs().leading_zeros() - d.leading_zeros()),
-        None => r.numer().bits() + r.denom().bits(),
-    }
-}
+use crate::algebra::limits::bits;
 
 /// Refuses results whose top-level numbers or exponents are out of bounds; the parts below the top
 /// level were checked when they were built, and only the top level combines in later operations.
@@ -250,6 +203,7 @@ fn algebra_error(input: &str, error: AlgebraError, span: Range<usize>) -> ParseE
         AlgebraError::DivisionByZero => ParseErrorKind::DivisionByZero,
         AlgebraError::NonIntegerPower(_) => ParseErrorKind::NonIntegerPower,
         AlgebraError::TooLarge(_) => ParseErrorKind::ExponentTooLarge,
+        AlgebraError::NumberTooLarge { .. } => ParseErrorKind::NumberTooLarge,
         other => ParseErrorKind::Algebra(other),
     };
     ParseError::new(kind, input, span)

@@ -153,6 +153,6 @@ impl Session {
             }
             _ => unreachable!("only expression commands reach Session::algebra"),
         };
-        Ok(self.show(&e))
+        Ok(self.show(&e.map_err(|e| ReplError::Math(e.to_string()))?))
     }
 }

@@ -14,13 +14,14 @@
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
 use super::{lhs_terms, tau, Method};
-use crate::algebra::{simplify, Poly};
+use crate::algebra::tidy::tidy;
+use crate::algebra::Poly;
 use crate::dynamics::Derivation;
 use crate::print::{self, Style};
 use serde_json::{json as j, Value};
 
 fn ascii(p: &Poly) -> Value {
-    Value::String(print::to_string(&simplify(&p.to_expr()), Style::Ascii))
+    Value::String(print::to_string(&tidy(&p.to_expr()), Style::Ascii))
 }
 
 fn matrix(m: &[Vec<Poly>]) -> Value {
