@@ -357,3 +357,25 @@ fn blow_ups_are_refused_or_cheap() {
         assert!(err.contains(says), "{args:?}: {err}");
     }
 }
+
+/// The zero test relates constant angles: every rational multiple of π in an expression is written
+/// over one base angle π/L, exactly (the minimal polynomial of cos(π/L) reduces it), so identities
+/// between π/3 and π/6, and of denominators 5, 7 and 12, simplify to 0.
+#[test]
+fn constant_angles_are_related() {
+    for e in [
+        "cos(pi/6) - sin(pi/3)",
+        "sin(2*pi/5) - 2*sin(pi/5)*cos(pi/5)",
+        "cos(pi/5) - cos(2*pi/5) - 1/2",
+        "cos(pi/7) - cos(2*pi/7) + cos(3*pi/7) - 1/2",
+        "cos(2*pi/7) - 2*cos(pi/7)^2 + 1",
+        "sin(pi/12) - cos(5*pi/12)",
+        "cos(pi/24)^2 - (1 + cos(pi/12))/2",
+        "sin(q1 + pi/7) - sin(q1)*cos(pi/7) - cos(q1)*sin(pi/7)",
+    ] {
+        let (out, err, code) = symdyn(&["simplify", e]);
+        assert_eq!((code, out.as_str()), (0, "0\n"), "{e}: {err}");
+    }
+    let (out, _, _) = symdyn(&["simplify", "sin(3*pi/10)"]);
+    assert_eq!(out, "cos(π/5)\n");
+}

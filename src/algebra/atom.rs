@@ -41,6 +41,11 @@ pub enum Class {
     Sin = 5,
     /// An opaque expression.
     Other = 6,
+    /// `cos(π/L)`, the base of an expression's constant angles, reduced modulo its minimal
+    /// polynomial (`pi_field`).
+    CosPi = 7,
+    /// `sin(π/L)` for an odd `L` (outside the field of `cos(π/L)`, with `sin² = 1 − cos²`).
+    SinPi = 8,
 }
 
 /// What an interned serial stands for.
@@ -57,6 +62,8 @@ pub enum Atom {
     /// The angle `symbol / over` (`over >= 2`) of a `sin`/`cos` atom pair: the base angle of a symbol
     /// that appears with fractional multiples (`sin(q1/2)`, see `normal`).
     Angle(Symbol, u64),
+    /// The constant angle `π/L` of a `CosPi`/`SinPi` pair.
+    PiOver(u64),
 }
 
 #[derive(Default)]
@@ -95,6 +102,8 @@ pub fn class(id: AtomId) -> Class {
         3 => Class::Sqrt,
         4 => Class::Cos,
         5 => Class::Sin,
+        7 => Class::CosPi,
+        8 => Class::SinPi,
         _ => Class::Other,
     }
 }
@@ -171,12 +180,32 @@ pub fn other(e: &Expr) -> AtomId {
     make(Class::Other, serial_of(Atom::Other(e.clone())))
 }
 
-/// `cos x` for `sin x` and back.
+/// `cos x` for `sin x` and back (also for the constant base `π/L`).
 pub fn partner(id: AtomId) -> AtomId {
     match class(id) {
         Class::Sin => make(Class::Cos, id & SERIAL),
         Class::Cos => make(Class::Sin, id & SERIAL),
+        Class::SinPi => make(Class::CosPi, id & SERIAL),
+        Class::CosPi => make(Class::SinPi, id & SERIAL),
         _ => id,
+    }
+}
+
+/// The id of `cos(π/L)`, the base of constant angles ([`Class::CosPi`]).
+pub fn cos_pi(l: u64) -> AtomId {
+    make(Class::CosPi, serial_of(Atom::PiOver(l)))
+}
+
+/// The id of `sin(π/L)`, the partner of [`cos_pi`] (used for odd `L` only).
+pub fn sin_pi(l: u64) -> AtomId {
+    make(Class::SinPi, serial_of(Atom::PiOver(l)))
+}
+
+/// The `L` of a `CosPi`/`SinPi` id.
+pub fn pi_base(id: AtomId) -> Option<u64> {
+    match lookup(id) {
+        Atom::PiOver(l) => Some(l),
+        _ => None,
     }
 }
 
@@ -205,6 +234,8 @@ pub fn to_expr(id: AtomId) -> Expr {
         (Class::Sin, Atom::Angle(s, over)) => Expr::sin(&angle(&s, over)),
         (Class::Cos, Atom::Angle(s, over)) => Expr::cos(&angle(&s, over)),
         (_, Atom::Angle(s, over)) => angle(&s, over),
+        (Class::SinPi, Atom::PiOver(l)) => Expr::sin(&pi_over(l)),
+        (_, Atom::PiOver(l)) => Expr::cos(&pi_over(l)),
         (_, Atom::Sym(s)) => Expr::sym(s),
         (_, Atom::Pi) => Expr::pi(),
         (_, Atom::Sqrt(k)) => Expr::sqrt(&Expr::num(k.into())).expect("positive radicand"),
@@ -216,4 +247,10 @@ pub fn to_expr(id: AtomId) -> Expr {
 fn angle(x: &Symbol, over: u64) -> Expr {
     let over = Rational::from(num_bigint::BigInt::from(over));
     Expr::sym(x.clone()).scale(&over.recip().expect("over >= 2"))
+}
+
+/// The angle `π/L` as an expression.
+fn pi_over(l: u64) -> Expr {
+    let over = Rational::from(num_bigint::BigInt::from(l));
+    Expr::pi().scale(&over.recip().expect("L >= 1"))
 }

@@ -126,7 +126,7 @@ pub fn poly_dt(p: &Poly) -> Poly {
             }
             _ => None,
         },
-        Class::Param | Class::Pi | Class::Sqrt => None,
+        Class::Param | Class::Pi | Class::Sqrt | Class::CosPi | Class::SinPi => None,
     })
 }
 

@@ -9,6 +9,7 @@
 
 pub mod atom;
 pub mod calculus;
+pub mod chebyshev;
 pub mod error;
 pub mod eval;
 pub mod expand;
@@ -17,6 +18,7 @@ pub(crate) mod fast_hash;
 pub mod limits;
 pub mod normal;
 pub mod number;
+pub mod pi_field;
 pub mod poly;
 pub mod simplify;
 pub mod subs;

@@ -13,9 +13,17 @@
 //! base angle is written with the Chebyshev polynomials, `cos(n y) = T_n(cos y)` and
 //! `sin(n y) = sin y · U_{n−1}(cos y)`, term by term at the cost of the answer.
 //!
+//! Constant angles `r π` likewise share one base `π/L` per expression, `L` the lcm of their
+//! denominators (each angle folded into the first quadrant, and to its complement when that has the
+//! smaller denominator: `3π/10` is `π/2 − π/5`); multiples of π/12 keep their exact values. `sin` and
+//! `cos` of `k π/L` are polynomials in `cos(π/L)` (and `sin(π/L)` for odd `L`) reduced modulo the
+//! minimal polynomial ([`pi_field`](super::pi_field)), where the surds `sqrt(2)`, `sqrt(3)`,
+//! `sqrt(5)` join them when the field holds them, so `cos(π/5) − cos(2π/5) − 1/2` is 0.
+//!
 //! The contract: for expressions polynomial in symbols, `q̇`, `q̈` and `sin`/`cos` of rational
 //! combinations of symbols (plus rational multiples of π), [`is_zero`]`(a − b)` holds exactly when `a`
-//! and `b` are equal as functions. The normal form is unique among expressions whose angles give each
+//! and `b` are equal as functions (for constants: up to surds other than those three, whose relations
+//! to the trigonometric values are not sought). The normal form is unique among expressions whose angles give each
 //! symbol the same base (within one derivation, every expression of `θ = q1/2` uses `q1/2`).
 //!
 //! Sizes: [`try_to_poly`] refuses with an [`AlgebraError`] what passes the
@@ -31,7 +39,7 @@ use super::number::Rational;
 use super::poly::{Mono, Poly};
 use super::symbol::Symbol;
 use num_integer::Integer;
-use num_traits::ToPrimitive;
+use num_traits::{ToPrimitive, Zero};
 use std::collections::BTreeMap;
 
 /// The polynomial normal form of `e`; a part beyond the size limits stays an opaque atom (see
@@ -73,26 +81,40 @@ pub fn equal(a: &Expr, b: &Expr) -> bool {
 /// holds the least common multiple (the symbol's angles then stay opaque).
 type Bases = BTreeMap<Symbol, u64>;
 
-/// Records the denominators of the multiples of each symbol in the angles of `e`.
-fn collect_bases(e: &Expr, bases: &mut Bases) {
+/// `lcm(base, d)`, 0 (no base) once it passes `u64` or `d` does not fit.
+fn lcm_into(base: &mut u64, d: &num_bigint::BigInt) {
+    *base = match d.to_u64() {
+        Some(d) if *base != 0 => {
+            u64::try_from(Integer::lcm(&u128::from(*base), &u128::from(d))).unwrap_or(0)
+        }
+        _ => 0,
+    };
+}
+
+/// Records the denominators of the multiples of each symbol in the angles of `e`, and those of the
+/// constant angles `r π` (folded into the first octant, without the tabulated multiples of π/12)
+/// in `pi_base`.
+fn collect_bases(e: &Expr, bases: &mut Bases, pi_base: &mut u64) {
     match e.kind() {
         Kind::Num(_) | Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => {}
-        Kind::Add(_, ts) => ts.iter().for_each(|(t, _)| collect_bases(t, bases)),
-        Kind::Mul(_, fs) => fs.iter().for_each(|(b, _)| collect_bases(b, bases)),
+        Kind::Add(_, ts) => ts
+            .iter()
+            .for_each(|(t, _)| collect_bases(t, bases, pi_base)),
+        Kind::Mul(_, fs) => fs
+            .iter()
+            .for_each(|(b, _)| collect_bases(b, bases, pi_base)),
         Kind::Fun(_, a) => {
             for (t, k) in a.terms() {
                 if let Some(x) = t.as_symbol() {
-                    let base = bases.entry(x.clone()).or_insert(1);
-                    *base = match k.denom().to_u64() {
-                        Some(d) if *base != 0 => {
-                            let l = Integer::lcm(&u128::from(*base), &u128::from(d));
-                            u64::try_from(l).unwrap_or(0)
-                        }
-                        _ => 0,
-                    };
+                    lcm_into(bases.entry(x.clone()).or_insert(1), &k.denom());
+                } else if matches!(t.kind(), Kind::Pi) {
+                    let (_, b, _) = octant(&k);
+                    if !has_table_value(&b) {
+                        lcm_into(pi_base, &b.denom());
+                    }
                 }
             }
-            collect_bases(a, bases);
+            collect_bases(a, bases, pi_base);
         }
     }
 }
@@ -101,14 +123,21 @@ fn collect_bases(e: &Expr, bases: &mut Bases) {
 /// error (`strict`) or an opaque atom.
 struct Converter {
     bases: Bases,
+    /// The `L` of the base `π/L` of the constant angles; 0 for none that a `u64` holds.
+    pi_base: u64,
     strict: bool,
 }
 
 impl Converter {
     fn new(e: &Expr, strict: bool) -> Converter {
         let mut bases = Bases::new();
-        collect_bases(e, &mut bases);
-        Converter { bases, strict }
+        let mut pi_base = 1;
+        collect_bases(e, &mut bases, &mut pi_base);
+        Converter {
+            bases,
+            pi_base,
+            strict,
+        }
     }
 
     /// `node` as an opaque atom where it passes a limit, or the error in strict mode.
@@ -125,7 +154,7 @@ impl Converter {
             Kind::Num(r) => Poly::constant(r.clone()),
             Kind::Sym(s) => Poly::symbol(s),
             Kind::Pi => Poly::atom(atom::pi()),
-            Kind::Sqrt(k) => Poly::atom(atom::sqrt(k)),
+            Kind::Sqrt(k) => self.surd(k),
             Kind::Add(c, ts) => {
                 let parts: Vec<Poly> = ts
                     .iter()
@@ -154,6 +183,37 @@ impl Converter {
             }
             Kind::Fun(f, a) => self.trig(*f, a)?,
         })
+    }
+
+    /// `sqrt(k)`: in the field of the constant angles' base `π/L` when it lies there (so that the
+    /// tabulated values `sqrt(2)/2 = cos(π/4)`, `sqrt(3)/2 = cos(π/6)` and `cos(π/5) = (1 + sqrt(5))/4`
+    /// meet the other angles): `sqrt(2) = 2 cos(π/4)` if `4 | L`, `sqrt(3) = 2 cos(π/6)` if `6 | L`,
+    /// `sqrt(5) = 4 cos(π/5) − 1` if `5 | L`, products of these; otherwise an atom of its own.
+    fn surd(&self, k: &num_bigint::BigInt) -> Poly {
+        let l = self.pi_base;
+        let atom = || Poly::atom(atom::sqrt(k));
+        if l <= 1 || l > super::pi_field::MAX_PI_BASE {
+            return atom();
+        }
+        let mut rest = k.clone();
+        let mut value = Poly::one();
+        for (p, divides, scale, shift) in [(2u32, 4u64, 2i64, 0i64), (3, 6, 2, 0), (5, 5, 4, -1)] {
+            let p = num_bigint::BigInt::from(p);
+            if (&rest % &p).is_zero() {
+                if !l.is_multiple_of(divides) {
+                    return atom();
+                }
+                rest /= &p;
+                let (_, cos) = base_pair(l, l / divides);
+                let root = cos.scale(&Rational::int(scale)).add(&Poly::int(shift));
+                value = value.mul(&root);
+            }
+        }
+        if rest == num_bigint::BigInt::from(1) {
+            value
+        } else {
+            atom()
+        }
     }
 
     /// `b^(−k)`: exact for a single term, otherwise an opaque atom `(b / lc)^(−k)` with the sum made
@@ -242,7 +302,7 @@ impl Converter {
         {
             return self.beyond(&node(), err);
         }
-        let (mut s, mut c) = constant_angle(&lin.constant);
+        let (mut s, mut c) = self.constant_angle(&lin.constant);
         for (x, over, n) in &lin.terms {
             let (sn, cn) = multiple_angle(x, *over, *n);
             let next_s = s.mul(&cn).add(&c.mul(&sn));
@@ -295,41 +355,6 @@ struct Linear {
     constant: Expr,
 }
 
-/// `(sin K, cos K)` for a constant angle `K = c + r π`: `sin c`, `cos c` are a related atom pair
-/// (for `c != 0`), `sin r π`, `cos r π` exact values or opaque atoms.
-fn constant_angle(k: &Expr) -> (Poly, Poly) {
-    let mut c = Rational::zero();
-    let mut rest = Vec::new();
-    for (t, coeff) in k.terms() {
-        if t.is_one() {
-            c = coeff;
-        } else {
-            rest.push(t.scale(&coeff));
-        }
-    }
-    let pi_part = Expr::sum(rest);
-    let (sr, cr) = match pi_part
-        .as_rational()
-        .cloned()
-        .or_else(|| pi_multiple(&pi_part))
-    {
-        Some(r) => pi_pair(&r),
-        None => (Poly::zero(), Poly::one()),
-    };
-    if c.is_zero() {
-        return (sr, cr);
-    }
-    let sign = if c.is_negative() {
-        Rational::int(-1)
-    } else {
-        Rational::one()
-    };
-    let c = Expr::num(c.abs());
-    let sc = Poly::atom(atom::sin_const(&c)).scale(&sign);
-    let cc = Poly::atom(atom::cos_const(&c));
-    (sc.mul(&cr).add(&cc.mul(&sr)), cc.mul(&cr).sub(&sc.mul(&sr)))
-}
-
 /// `r` for an expression `r π`.
 fn pi_multiple(e: &Expr) -> Option<Rational> {
     match e.kind() {
@@ -341,36 +366,36 @@ fn pi_multiple(e: &Expr) -> Option<Rational> {
     }
 }
 
-/// `(sin r π, cos r π)`: exact values where the table has them, otherwise `±sin b π`, `±cos b π` of the
-/// base angle `b` in `(0, 1/4)` reached by the quadrant and complement identities, as a related atom
-/// pair (so `sin²(π/5) + cos²(π/5)` is 1 and `cos(3π/10)` is `sin(π/5)`).
-fn pi_pair(r: &Rational) -> (Poly, Poly) {
-    let angle = &Expr::pi() * &Expr::num(r.clone());
-    let (s, c) = (Expr::sin(&angle), Expr::cos(&angle));
-    let is_value = |e: &Expr| e.symbols().is_empty() && !has_fun(e);
-    if is_value(&s) && is_value(&c) {
-        return (to_poly(&s), to_poly(&c));
-    }
+/// The angle `r π` folded into the first quadrant: `(k, b, swap)` with `r π = k π/2 + t π`, `t` in
+/// `[0, 1/2)`, and `b` either `t` or its complement `1/2 − t`, whichever has the smaller denominator
+/// (`3/10` becomes `1/5`; on a tie the one in `[0, 1/4]`), so that `(sin, cos)` of `r π` are those of
+/// `b π`, swapped if `swap`, then turned by `k` quarter turns (see [`turn`]).
+fn octant(r: &Rational) -> (i64, Rational, bool) {
     // r mod 2 in [0, 2), then the quadrant k and the rest t in [0, 1/2).
     let half = Rational::new(1, 2).expect("non-zero");
     let two = Rational::int(2);
     let turns = num_integer::Integer::div_floor(&r.numer(), &(r.denom() * 2));
     let r0 = r - &(&two * &Rational::from(turns));
     let quadrants = num_integer::Integer::div_floor(&(&r0 * &two).numer(), &(&r0 * &two).denom());
-    let k = num_traits::ToPrimitive::to_i64(&quadrants).unwrap_or(0);
+    let k = quadrants.to_i64().unwrap_or(0);
     let t = &r0 - &(&half * &Rational::int(k));
     let quarter = Rational::new(1, 4).expect("non-zero");
-    let (b, swap) = if t > quarter {
-        (&half - &t, true)
-    } else {
-        (t, false)
+    let complement = &half - &t;
+    let swap = match t.denom().cmp(&complement.denom()) {
+        std::cmp::Ordering::Less => false,
+        std::cmp::Ordering::Greater => true,
+        std::cmp::Ordering::Equal => t > quarter,
     };
-    let base = &Expr::pi() * &Expr::num(b);
-    let (sb, cb) = (
-        Poly::atom(atom::sin_const(&base)),
-        Poly::atom(atom::cos_const(&base)),
-    );
-    let (st, ct) = if swap { (cb, sb) } else { (sb, cb) };
+    if swap {
+        (k, complement, true)
+    } else {
+        (k, t, false)
+    }
+}
+
+/// `(sin, cos)` of `k π/2 + θ` from `(sin θ, cos θ)`, and of the complement first if `swap`.
+fn turn(k: i64, swap: bool, s: Poly, c: Poly) -> (Poly, Poly) {
+    let (st, ct) = if swap { (c, s) } else { (s, c) };
     match k {
         0 => (st, ct),
         1 => (ct, st.neg()),
@@ -379,12 +404,92 @@ fn pi_pair(r: &Rational) -> (Poly, Poly) {
     }
 }
 
-fn has_fun(e: &Expr) -> bool {
-    match e.kind() {
-        Kind::Fun(..) => true,
-        Kind::Add(_, ts) => ts.iter().any(|(t, _)| has_fun(t)),
-        Kind::Mul(_, fs) => fs.iter().any(|(b, _)| has_fun(b)),
-        _ => false,
+/// Whether `sin`, `cos` of `b π` (first octant) have exact values: `b` a multiple of 1/12.
+fn has_table_value(b: &Rational) -> bool {
+    (b * &Rational::int(12)).is_integer()
+}
+
+/// `(sin m π/L, cos m π/L)` in the field of `c = cos(π/L)` (module [`pi_field`](super::pi_field)):
+/// `cos = T_m(c)`; `sin = s U_(m−1)(c)` for odd `L`, `T_(L/2 − m)(c)` for even `L`.
+fn base_pair(l: u64, m: u64) -> (Poly, Poly) {
+    let (cos_id, sin_id) = (atom::cos_pi(l), atom::sin_pi(l));
+    let power = |p: u64| Mono::atom(cos_id, i32::try_from(p).expect("a power within the base"));
+    let in_c = |terms: Vec<(u64, Rational)>| {
+        Poly::from_terms(terms.into_iter().map(|(p, a)| (power(p), a)))
+    };
+    let cos = in_c(super::chebyshev::t(m));
+    let sin = if m == 0 {
+        Poly::zero()
+    } else if l.is_multiple_of(2) {
+        in_c(super::chebyshev::t(l / 2 - m))
+    } else {
+        Poly::from_terms(super::chebyshev::u(m - 1).into_iter().map(|(p, a)| {
+            let mut f = power(p).factors().to_vec();
+            f.push((sin_id, 1));
+            (Mono::from_sorted(f), a)
+        }))
+    };
+    (sin, cos)
+}
+
+impl Converter {
+    /// `(sin K, cos K)` for a constant angle `K = c + r π`: `sin c`, `cos c` are a related atom pair
+    /// (for `c != 0`); `sin r π`, `cos r π` exact values, polynomials over the expression's base
+    /// `π/L`, or (beyond [`MAX_PI_BASE`](super::pi_field::MAX_PI_BASE)) an atom pair of their own.
+    fn constant_angle(&self, k: &Expr) -> (Poly, Poly) {
+        let mut c = Rational::zero();
+        let mut rest = Vec::new();
+        for (t, coeff) in k.terms() {
+            if t.is_one() {
+                c = coeff;
+            } else {
+                rest.push(t.scale(&coeff));
+            }
+        }
+        let pi_part = Expr::sum(rest);
+        let (sr, cr) = match pi_part
+            .as_rational()
+            .cloned()
+            .or_else(|| pi_multiple(&pi_part))
+        {
+            Some(r) => self.pi_pair(&r),
+            None => (Poly::zero(), Poly::one()),
+        };
+        if c.is_zero() {
+            return (sr, cr);
+        }
+        let sign = if c.is_negative() {
+            Rational::int(-1)
+        } else {
+            Rational::one()
+        };
+        let c = Expr::num(c.abs());
+        let sc = Poly::atom(atom::sin_const(&c)).scale(&sign);
+        let cc = Poly::atom(atom::cos_const(&c));
+        (sc.mul(&cr).add(&cc.mul(&sr)), cc.mul(&cr).sub(&sc.mul(&sr)))
+    }
+
+    /// `(sin r π, cos r π)`: exact values where the table has them (multiples of π/12), otherwise
+    /// over the expression's base angle `π/L`, from the first octant.
+    fn pi_pair(&self, r: &Rational) -> (Poly, Poly) {
+        let (k, b, swap) = octant(r);
+        if has_table_value(&b) {
+            let angle = &Expr::pi() * &Expr::num(r.clone());
+            return (to_poly(&Expr::sin(&angle)), to_poly(&Expr::cos(&angle)));
+        }
+        let l = self.pi_base;
+        let m = (&b * &Rational::from(num_bigint::BigInt::from(l))).to_i64();
+        let (sb, cb) = match m {
+            Some(m) if l != 0 && l <= super::pi_field::MAX_PI_BASE => base_pair(l, m as u64),
+            _ => {
+                let base = &Expr::pi() * &Expr::num(b);
+                (
+                    Poly::atom(atom::sin_const(&base)),
+                    Poly::atom(atom::cos_const(&base)),
+                )
+            }
+        };
+        turn(k, swap, sb, cb)
     }
 }
 
@@ -481,6 +586,81 @@ mod tests {
         let a = Expr::sin(&(q(1) + pi(1, 5))).pow(2).unwrap();
         let b = Expr::one() - Expr::cos(&(q(1) + pi(1, 5))).pow(2).unwrap();
         assert!(equal(&a, &b));
+    }
+
+    fn p(s: &str) -> Expr {
+        crate::parse::parse_expr(s).unwrap()
+    }
+
+    /// Rational multiples of a symbol share one base angle per expression, so the zero test relates
+    /// halves, thirds and wholes.
+    #[test]
+    fn fractional_multiples_share_a_base_angle() {
+        for (a, b) in [
+            ("sin(q1/2)^2 + cos(q1/2)^2", "1"),
+            ("sin(q1)", "2*sin(q1/2)*cos(q1/2)"),
+            ("cos(q1/2)", "4*cos(q1/6)^3 - 3*cos(q1/6)"),
+            ("sin(q1/2 + q1/3)", "sin(5*q1/6)"),
+            ("sin(0.5*q1 + q2)", "sin(q1/2)*cos(q2) + cos(q1/2)*sin(q2)"),
+            ("cos(2*q1/3)", "1 - 2*sin(q1/3)^2"),
+        ] {
+            assert!(equal(&p(a), &p(b)), "{a} = {b}");
+        }
+        assert!(!is_zero(&p("sin(q1/2) - sin(q1/3)")));
+        // One base per expression: sin(q1/2) alone keeps its own angle.
+        assert_eq!(normal_form(&p("sin(q1/2)")), p("sin(q1/2)"));
+        // Derivatives carry the factor of the base.
+        use crate::algebra::calculus::{poly_diff, poly_dt};
+        let e = p("sin(q1/2)*cos(q1/3)");
+        let d = poly_diff(&to_poly(&e), &Symbol::q(1)).to_expr();
+        assert!(equal(
+            &d,
+            &p("1/2*cos(q1/2)*cos(q1/3) - 1/3*sin(q1/2)*sin(q1/3)")
+        ));
+        let t = poly_dt(&to_poly(&e)).to_expr();
+        assert!(equal(&t, &(d * Expr::qd(1))));
+    }
+
+    /// Constant angles share one base `π/L` per expression, reduced modulo the minimal polynomial of
+    /// `cos(π/L)`: identities of denominators 3 and 6, 5, 7, 8, 12 and 24, with the tabulated surds.
+    #[test]
+    fn constant_angles_are_decided_exactly() {
+        for (a, b) in [
+            ("cos(pi/6)", "sin(pi/3)"),
+            ("sin(2*pi/5)", "2*sin(pi/5)*cos(pi/5)"),
+            ("cos(pi/5) - cos(2*pi/5)", "1/2"),
+            ("cos(pi/5)", "(1 + sqrt(5))/4"),
+            ("cos(pi/7) - cos(2*pi/7) + cos(3*pi/7)", "1/2"),
+            ("cos(2*pi/7)", "2*cos(pi/7)^2 - 1"),
+            ("cos(pi/8)^2", "(2 + sqrt(2))/4"),
+            ("cos(pi/24)^2", "(1 + cos(pi/12))/2"),
+            ("sin(pi/12)", "cos(5*pi/12)"),
+            ("sin(q1 + pi/5)", "sin(q1)*cos(pi/5) + cos(q1)*sin(pi/5)"),
+            ("1/cos(pi/7)", "4 + 4*cos(pi/7) - 8*cos(pi/7)^2"),
+        ] {
+            assert!(equal(&p(a), &p(b)), "{a} = {b}");
+        }
+        assert!(!is_zero(&p("cos(pi/7) - cos(pi/5)")));
+        assert!(!is_zero(&p("sin(pi/5) - cos(pi/5)")));
+        // Alone, an angle keeps its own name: the smaller denominator of the angle or its complement.
+        assert_eq!(normal_form(&p("sin(3*pi/10)")), p("cos(pi/5)"));
+        assert_eq!(normal_form(&p("cos(2*pi/5)")), p("cos(pi/5) - 1/2"));
+    }
+
+    /// Beyond the size limits: `try_to_poly` says so, `to_poly` keeps the part opaque.
+    #[test]
+    fn limits_in_the_normal_form() {
+        for (e, says) in [
+            ("sin(q1)^99999999", "would expand into about 50000000 terms"),
+            ("sin(99999*q1)", "would hold a number of about 100001 bits"),
+            ("(a + b)^3000 + 1", "would hold a number of about 3000 bits"),
+        ] {
+            let err = try_to_poly(&p(e)).unwrap_err().to_string();
+            assert!(err.contains(says), "{e}: {err}");
+            assert!(!to_poly(&p(e)).is_zero());
+        }
+        assert_eq!(normal_form(&p("sin(q1)^99999999")), p("sin(q1)^99999999"));
+        assert!(is_zero(&(p("sin(99999*q1)") - p("sin(99999*q1)"))));
     }
 
     #[test]

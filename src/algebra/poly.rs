@@ -17,6 +17,7 @@ use super::error::AlgebraError;
 use super::expr::Expr;
 use super::fast_hash::FxHashMap;
 use super::number::{split_square, Rational};
+use super::pi_field;
 use super::symbol::Symbol;
 use num_bigint::BigInt;
 use num_traits::One;
@@ -124,13 +125,16 @@ fn mul_into(a: &[(AtomId, i32)], b: &[(AtomId, i32)], out: &mut Vec<(AtomId, i32
     out.extend_from_slice(&b[j..]);
 }
 
-/// Whether a factor list breaks a rule of the normal form (`sin²`, or surds not reduced).
+/// Whether a factor list breaks a rule of the normal form (`sin²`, surds not reduced, a power of
+/// `cos(π/L)` beyond its field's degree or below zero).
 #[inline]
 fn needs_reduction(factors: &[(AtomId, i32)]) -> bool {
     let mut surds = 0;
     for &(id, e) in factors {
         match atom::class(id) {
-            Class::Sin if e >= 2 => return true,
+            Class::Sin | Class::SinPi if e >= 2 => return true,
+            Class::SinPi if e < 0 => return true,
+            Class::CosPi if e < 0 || e as usize >= pi_degree(id) => return true,
             Class::Sqrt => {
                 surds += 1;
                 if e != 1 || surds > 1 {
@@ -141,6 +145,11 @@ fn needs_reduction(factors: &[(AtomId, i32)]) -> bool {
         }
     }
     false
+}
+
+/// The degree of the field of a `CosPi`/`SinPi` atom.
+fn pi_degree(id: AtomId) -> usize {
+    pi_field::degree(atom::pi_base(id).expect("a CosPi or SinPi atom holds its L"))
 }
 
 /// Calls `out` with the reduced monomials whose sum equals `coeff · m`.
@@ -184,12 +193,54 @@ fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
         reduce(Mono(Arc::from(rest)), coeff, out);
         return;
     }
+    // sin^(−k)(π/L) = sin^(−k mod 2)(π/L) · (1 − cos²(π/L))^(−⌈k/2⌉), the inverse taken in the field.
+    if let Some(&(sin_id, e)) =
+        m.0.iter()
+            .find(|&&(id, e)| atom::class(id) == Class::SinPi && e < 0)
+    {
+        let l = atom::pi_base(sin_id).expect("a SinPi atom holds its L");
+        let half = (i64::from(-e) + 1) / 2;
+        let one_minus_c2 = pi_field::reduce(
+            l,
+            vec![Rational::one(), Rational::zero(), Rational::int(-1)],
+        );
+        let inverse = pi_field::inverse(l, &one_minus_c2).expect("sin(π/L) is not zero");
+        let mut factor = vec![Rational::one()];
+        for _ in 0..half {
+            factor = pi_field::mul(l, &factor, &inverse);
+        }
+        let base = m.with(sin_id, e + 2 * half as i32);
+        let cos_id = atom::partner(sin_id);
+        let cos_e = base.exponent(cos_id);
+        for (j, r) in factor.iter().enumerate() {
+            if !r.is_zero() {
+                reduce(base.with(cos_id, cos_e + j as i32), &coeff * r, out);
+            }
+        }
+        return;
+    }
     // sin^e x = sin^(e mod 2) x · (1 − cos² x)^(e div 2)
-    let (sin_id, e) =
+    let Some((sin_id, e)) =
         m.0.iter()
             .copied()
-            .find(|&(id, e)| atom::class(id) == Class::Sin && e >= 2)
-            .expect("needs_reduction found one");
+            .find(|&(id, e)| matches!(atom::class(id), Class::Sin | Class::SinPi) && e >= 2)
+    else {
+        // cos^e(π/L) with e outside [0, N): its remainder modulo the minimal polynomial.
+        let (cos_id, e) =
+            m.0.iter()
+                .copied()
+                .find(|&(id, e)| {
+                    atom::class(id) == Class::CosPi && (e < 0 || e as usize >= pi_degree(id))
+                })
+                .expect("needs_reduction found one");
+        let l = atom::pi_base(cos_id).expect("a CosPi atom holds its L");
+        for (j, r) in pi_field::power(l, i64::from(e)).iter().enumerate() {
+            if !r.is_zero() {
+                reduce(m.with(cos_id, j as i32), &coeff * r, out);
+            }
+        }
+        return;
+    };
     let cos_id = atom::partner(sin_id);
     let n = e / 2;
     let base = m.with(sin_id, e % 2);
@@ -455,7 +506,7 @@ impl Poly {
             return false;
         };
         m.0.iter().all(|&(id, e)| match atom::class(id) {
-            Class::Sqrt => false,
+            Class::Sqrt | Class::CosPi | Class::SinPi => false,
             Class::Sin if e > 0 => self.terms.iter().all(|(n, _)| n.exponent(id) <= 0),
             _ => true,
         })
@@ -528,14 +579,19 @@ impl Poly {
         let mut sin_exponent: BTreeMap<AtomId, u128> = BTreeMap::new();
         let mut surd_bits = 0u128;
         let mut coefficient_bits = 0u128;
+        // A power of cos(π/L) reduces to at most N terms.
+        let mut field_degree = 1u128;
         for (m, c) in &self.terms {
             coefficient_bits = coefficient_bits.max(u128::from(growing_bits(c)));
             for &(id, k) in m.0.iter() {
                 largest_exponent = largest_exponent.max(u128::from(k.unsigned_abs()));
                 match atom::class(id) {
-                    Class::Sin if k > 0 => {
+                    Class::Sin | Class::SinPi if k > 0 => {
                         let x = sin_exponent.entry(id).or_default();
                         *x = (*x).max(k as u128);
+                    }
+                    Class::CosPi => {
+                        field_degree = field_degree.max(pi_degree(id) as u128);
                     }
                     Class::Sqrt => {
                         let atom::Atom::Sqrt(r) = atom::lookup(id) else {
@@ -562,7 +618,7 @@ impl Poly {
         };
         let reductions = sin_exponent
             .values()
-            .fold(1u128, |acc, k| acc.saturating_mul(k * e128 / 2 + 1));
+            .fold(field_degree, |acc, k| acc.saturating_mul(k * e128 / 2 + 1));
         check_terms(what, products.saturating_mul(reductions))?;
         // Coefficients: c^e, a multinomial coefficient below m^e, binomials of the reduction below
         // 2^(k e / 2), powers of surds.
@@ -768,7 +824,9 @@ impl Accumulator {
     /// `sin^(e mod 2) x · (1 − cos² x)^(e div 2)` on a scratch copy, each term reduced again for the
     /// next angle; surds go the general way ([`reduce`]).
     fn add_reduced(&mut self, m: &[(AtomId, i32)], c: Rational) {
-        if m.iter().any(|&(id, _)| atom::class(id) == Class::Sqrt) {
+        if m.iter()
+            .any(|&(id, _)| matches!(atom::class(id), Class::Sqrt | Class::CosPi | Class::SinPi))
+        {
             reduce(Mono(Arc::from(m)), c, &mut |m, c| self.add(m, c));
             return;
         }
