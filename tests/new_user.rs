@@ -248,6 +248,15 @@ fn physics_mistakes_are_said_with_their_fix() {
         "{err}"
     );
 
+    let skew = scene_file(
+        "skew.scene",
+        "gravity [0, 0, -g]\njoint 1 revolute a=0 alpha=0 d=0 theta=q1\n\
+         link 1 mass=1 inertia=[[1, 1/2, 0], [0, 1, 0], [0, 0, 1]]\n",
+    );
+    let (_, err, code) = symdyn(&["derive", &skew]);
+    assert_eq!(code, 1);
+    assert!(err.contains("skew.scene:3:23: the inertia matrix is not symmetric: entry (1, 2) is `1/2` but entry (2, 1) is `0`"), "{err}");
+
     let negative = scene_file(
         "negative.scene",
         "gravity [0, 0, -g]\njoint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=-2\n",
@@ -378,4 +387,76 @@ fn constant_angles_are_related() {
     }
     let (out, _, _) = symdyn(&["simplify", "sin(3*pi/10)"]);
     assert_eq!(out, "cos(π/5)\n");
+}
+
+/// A Python with SymPy (`$SYMDYN_PEER_PYTHON`, the benchmark's `target/bench-venv`, or `python3`),
+/// or `None` with a notice outside CI; in CI its absence fails, as in `tests/peers.rs`.
+fn python_with_sympy() -> Option<std::path::PathBuf> {
+    let manifest = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let candidates = [
+        std::env::var_os("SYMDYN_PEER_PYTHON").map(std::path::PathBuf::from),
+        Some(manifest.join("target/bench-venv/bin/python")),
+        Some("python3".into()),
+    ];
+    let found = candidates.into_iter().flatten().find(|py| {
+        Command::new(py)
+            .args(["-c", "import sympy"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    });
+    if found.is_none() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "no Python with sympy and CI is set"
+        );
+        eprintln!("SKIPPED: no Python with sympy");
+    }
+    found
+}
+
+/// The README's snippet reads symdyn's JSON into SymPy with parameters named `lambda` (a Python
+/// keyword), `gamma` (a SymPy function), `E` and `I` (SymPy constants) as plain symbols, and the
+/// result is the equation symdyn derived.
+#[test]
+fn readme_reads_json_with_sympy_unsafe_names() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let after = &readme[readme
+        .find("Reading the expressions into SymPy")
+        .expect("the section")..];
+    let start = after.find("```python\n").expect("a python block") + "```python\n".len();
+    let snippet = &after[start..start + after[start..].find("```").expect("its end")];
+    let scene = scene_file(
+        "unsafe.scene",
+        "gravity [0, -E, 0]\njoint 1 revolute a=0 alpha=0 d=0 theta=q1\n\
+         link 1 mass=lambda com=[gamma, 0, 0] inertia=diag(0, 0, I)\n",
+    );
+    let (json, err, code) = symdyn(&["derive", &scene, "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let Some(python) = python_with_sympy() else {
+        return;
+    };
+    let dir = std::path::Path::new(&scene).parent().unwrap().join("sympy");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("robot.json"), json).unwrap();
+    let check = "\nfrom sympy import Symbol, cos, simplify\n\
+        lam, gam, E, I = (Symbol(n) for n in ('lambda', 'gamma', 'E', 'I'))\n\
+        q1, qdd1 = Symbol('q1'), Symbol('qdd1')\n\
+        want = (lam*gam**2 + I)*qdd1 + lam*gam*E*cos(q1)\n\
+        assert simplify(tau[0] - want) == 0, tau\n\
+        print(sorted(str(s) for s in tau[0].free_symbols))\n";
+    let out = Command::new(python)
+        .arg("-c")
+        .arg(format!("{snippet}{check}"))
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}{}",
+        stdout,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(stdout.trim(), "['E', 'I', 'gamma', 'lambda', 'q1', 'qdd1']");
 }

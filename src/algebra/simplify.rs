@@ -1,7 +1,9 @@
 //! `simplify`: the normal form, then the display rewrites of `tidy`.
 //!
-//! Equal mathematics gives equal output: the normal form is unique within the zero-test contract, and
-//! the display rewrites are deterministic functions of it.
+//! Equal mathematics gives equal output: the normal form is unique within the zero-test contract
+//! among expressions written over the same base angles (see `normal`: `sin(q1)` and
+//! `2 sin(q1/2) cos(q1/2)` are equal, and their difference simplifies to 0, but each alone keeps its
+//! own angle), and the display rewrites are deterministic functions of it.
 
 use super::error::AlgebraError;
 use super::expr::Expr;
