@@ -359,6 +359,8 @@ fn blow_ups_are_refused_or_cheap() {
         (&["expand", "(a+b)^5000"], "would hold a number of about 5000 bits"),
         (&["simplify", "sin(99999*q1) - cos(q1)"], "`sin(99999*q1)` would hold a number of about 100001 bits"),
         (&["simplify", "(a+b+c+d+e+f+g+h+i+j)^25"], "would expand into about"),
+        (&["simplify", "1/sin(2*q1)^99999999"], "would hold a number of about 199999998 bits"),
+        (&["simplify", "cos(pi/7)^99999999"], "would hold a number of about 499999995 bits"),
     ];
     for (args, says) in rows {
         let (out, err, code) = symdyn(args);

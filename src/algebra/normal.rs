@@ -241,16 +241,29 @@ impl Converter {
                     }
                 }
             }
-            let coeff = match c.pow(-i64::from(k)) {
-                Some(c) if super::limits::bits(&c) <= super::limits::MAX_NUMBER_BITS => c,
-                _ => {
-                    let bits = u128::from(super::limits::growing_bits(c)) * u128::from(k);
-                    let err = check_bits(|| format!("({})^-{k}", describe(b)), bits)
-                        .err()
-                        .unwrap_or(AlgebraError::DivisionByZero);
-                    return self.beyond(&b.pow(-1).unwrap_or_else(|_| b.clone()), err);
-                }
-            };
+            // The numbers of c^(−k), and of the surds' powers, before computing them.
+            let surds: u128 = m
+                .factors()
+                .iter()
+                .filter_map(|&(id, e)| match atom::lookup(id) {
+                    atom::Atom::Sqrt(r) if atom::class(id) == atom::Class::Sqrt => {
+                        Some(u128::from(r.bits()) / 2 + 1)
+                    }
+                    // A power of cos(π/L) or sin(π/L), reduced in the field.
+                    atom::Atom::PiOver(l) => Some(
+                        u128::from(e.unsigned_abs())
+                            * u128::from(super::pi_field::bits_per_power(l)),
+                    ),
+                    _ => None,
+                })
+                .sum();
+            let bits = (u128::from(super::limits::growing_bits(c)) + surds) * u128::from(k);
+            if let Err(err) = check_bits(|| format!("({})^-{k}", describe(b)), bits) {
+                return self.beyond(&b.pow(-1).unwrap_or_else(|_| b.clone()), err);
+            }
+            let coeff = c
+                .pow(-i64::from(k))
+                .expect("a term's coefficient is not zero");
             return Ok(Poly::term(Mono::from_sorted(exponents), coeff));
         }
         let canonical = p.to_expr();
@@ -261,16 +274,13 @@ impl Converter {
             .unwrap_or_else(Rational::one);
         let monic = p.scale(&lead.recip().expect("non-zero leading coefficient"));
         let id = atom::other(&monic.to_expr());
-        let Some(coeff) = lead
-            .pow(-i64::from(k))
-            .filter(|c| super::limits::bits(c) <= super::limits::MAX_NUMBER_BITS)
-        else {
-            let bits = u128::from(super::limits::growing_bits(&lead)) * u128::from(k);
-            let err = check_bits(|| format!("({})^-{k}", describe(b)), bits)
-                .err()
-                .unwrap_or(AlgebraError::DivisionByZero);
+        let bits = u128::from(super::limits::growing_bits(&lead)) * u128::from(k);
+        if let Err(err) = check_bits(|| format!("({})^-{k}", describe(b)), bits) {
             return self.beyond(&b.pow(-1).unwrap_or_else(|_| b.clone()), err);
-        };
+        }
+        let coeff = lead
+            .pow(-i64::from(k))
+            .expect("non-zero leading coefficient");
         let k = i32::try_from(k).unwrap_or(i32::MAX);
         Ok(Poly::term(Mono::atom(id, -k), coeff))
     }
@@ -654,6 +664,18 @@ mod tests {
             ("sin(q1)^99999999", "would expand into about 50000000 terms"),
             ("sin(99999*q1)", "would hold a number of about 100001 bits"),
             ("(a + b)^3000 + 1", "would hold a number of about 3000 bits"),
+            (
+                "sin(2*q1)^-99999999",
+                "would hold a number of about 199999998 bits",
+            ),
+            (
+                "cos(pi/7)^99999999",
+                "would hold a number of about 499999995 bits",
+            ),
+            (
+                "1/sin(pi/5)^99999999",
+                "would hold a number of about 399999996 bits",
+            ),
         ] {
             let err = try_to_poly(&p(e)).unwrap_err().to_string();
             assert!(err.contains(says), "{e}: {err}");

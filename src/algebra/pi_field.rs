@@ -54,6 +54,17 @@ pub fn degree(l: u64) -> usize {
     min_poly(l).len() - 1
 }
 
+/// The bits a power of `c` (or `s`) gains per unit of its exponent when reduced: the largest
+/// coefficient of `Ψ_L` in bits, at least 1.
+pub fn bits_per_power(l: u64) -> u64 {
+    min_poly(l)
+        .iter()
+        .map(super::limits::bits)
+        .max()
+        .unwrap_or(1)
+        .max(1)
+}
+
 /// `f` modulo `Ψ_L`: `N` coefficients.
 pub fn reduce(l: u64, mut f: Vec<Rational>) -> Vec<Rational> {
     let psi = min_poly(l);
@@ -121,6 +132,23 @@ pub fn power(l: u64, e: i64) -> Arc<Vec<Rational>> {
         .powers
         .insert((l, e), Arc::clone(&p));
     p
+}
+
+/// `a^k` in `Q(c)`, by repeated squaring.
+pub fn power_of(l: u64, a: &[Rational], k: u64) -> Vec<Rational> {
+    let mut acc = vec![Rational::one()];
+    let mut square = a.to_vec();
+    let mut k = k;
+    while k > 0 {
+        if k & 1 == 1 {
+            acc = mul(l, &acc, &square);
+        }
+        k >>= 1;
+        if k > 0 {
+            square = mul(l, &square, &square);
+        }
+    }
+    reduce(l, acc)
 }
 
 /// The inverse of `a` in `Q(c)` (extended Euclid modulo `Ψ_L`); `None` for zero.

@@ -205,10 +205,7 @@ fn reduce(m: Mono, coeff: Rational, out: &mut dyn FnMut(Mono, Rational)) {
             vec![Rational::one(), Rational::zero(), Rational::int(-1)],
         );
         let inverse = pi_field::inverse(l, &one_minus_c2).expect("sin(π/L) is not zero");
-        let mut factor = vec![Rational::one()];
-        for _ in 0..half {
-            factor = pi_field::mul(l, &factor, &inverse);
-        }
+        let factor = pi_field::power_of(l, &inverse, half as u64);
         let base = m.with(sin_id, e + 2 * half as i32);
         let cos_id = atom::partner(sin_id);
         let cos_e = base.exponent(cos_id);
@@ -579,8 +576,9 @@ impl Poly {
         let mut sin_exponent: BTreeMap<AtomId, u128> = BTreeMap::new();
         let mut surd_bits = 0u128;
         let mut coefficient_bits = 0u128;
-        // A power of cos(π/L) reduces to at most N terms.
+        // A power of cos(π/L) reduces to at most N terms, with numbers growing with the exponent.
         let mut field_degree = 1u128;
+        let mut field_bits = 0u128;
         for (m, c) in &self.terms {
             coefficient_bits = coefficient_bits.max(u128::from(growing_bits(c)));
             for &(id, k) in m.0.iter() {
@@ -590,8 +588,12 @@ impl Poly {
                         let x = sin_exponent.entry(id).or_default();
                         *x = (*x).max(k as u128);
                     }
-                    Class::CosPi => {
+                    Class::CosPi | Class::SinPi => {
                         field_degree = field_degree.max(pi_degree(id) as u128);
+                        let l = atom::pi_base(id).expect("a CosPi or SinPi atom holds its L");
+                        let per =
+                            u128::from(k.unsigned_abs()) * u128::from(pi_field::bits_per_power(l));
+                        field_bits = field_bits.max(per);
                     }
                     Class::Sqrt => {
                         let atom::Atom::Sqrt(r) = atom::lookup(id) else {
@@ -624,7 +626,7 @@ impl Poly {
         // 2^(k e / 2), powers of surds.
         let log_m = u128::from(64 - (m - 1).leading_zeros());
         let halves: u128 = sin_exponent.values().map(|k| k / 2 + 1).sum();
-        let per_unit = coefficient_bits + log_m + halves + surd_bits;
+        let per_unit = coefficient_bits + log_m + halves + surd_bits + field_bits;
         check_bits(what, per_unit.saturating_mul(e128))
     }
 
