@@ -267,11 +267,12 @@ fn physics_mistakes_are_said_with_their_fix() {
 }
 
 /// A 3R arm whose joint angles are fractions of the coordinates, to which `check` and the numbers
-/// are held (the base angles q2/2 and q3/4 carry the whole derivation).
+/// are held (the base angles q2/2 and q3/4 carry the whole derivation), with twists of π/5 and 2π/7
+/// (constant angles over their own bases).
 const FRACTIONAL: &str = "gravity [0, 0, -g]
 joint 1 revolute a=0 alpha=90deg d=d1 theta=0.5*q1
-joint 2 revolute a=l2 alpha=0 d=0 theta=q2/2 + pi/4
-joint 3 revolute a=l3 alpha=0 d=0 theta=3*q3/4
+joint 2 revolute a=l2 alpha=pi/5 d=0 theta=q2/2 + pi/4
+joint 3 revolute a=l3 alpha=2*pi/7 d=0 theta=3*q3/4
 link 1 mass=m1 inertia=diag(I1x, I1y, I1z)
 link 2 mass=m2 com=[lc2-l2,0,0] inertia=diag(I2x,I2y,I2z)
 link 3 mass=m3 com=[lc3-l3,0,0] inertia=diag(I3x,I3y,I3z)
