@@ -63,12 +63,12 @@ pub fn equalities(lines: &[(String, String)], style: Style) -> String {
     }
 }
 
-/// The proof report: one line per claim, `✓` or `✗`, with the failing entries.
+/// The proof report: one line per claim, `proved [how]` or `FAILED [how]`, with the failing entries.
 pub fn check_report(robot_name: &str, claims: &[Claim]) -> String {
     let mut out = format!("{robot_name}\n");
     for c in claims {
         let mark = if c.holds { "proved" } else { "FAILED" };
-        out.push_str(&format!("  {mark}: {}\n", c.statement));
+        out.push_str(&format!("  {mark} [{}]: {}\n", c.proof, c.statement));
         for f in &c.failures {
             out.push_str(&format!("      {f}\n"));
         }
