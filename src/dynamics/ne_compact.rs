@@ -278,6 +278,15 @@ impl CompactProgram {
         Ok(CompactProgram::from_arena(&arena, tau))
     }
 
+    /// The compact Newton–Euler program of a robot in the inertial frame: the recursion of
+    /// [`super::newton_euler`] over named intermediates ([`super::compact::inertial`]).
+    pub fn derive_inertial(robot: &Robot) -> Result<CompactProgram, ModelError> {
+        robot.validate()?;
+        let joints: Vec<JointFrame> = (1..=robot.dof()).map(|i| joint_frame(robot, i)).collect();
+        let (arena, tau) = super::compact::inertial::tau(robot, &joints, arena_for(robot));
+        Ok(CompactProgram::from_arena(&arena, tau))
+    }
+
     /// The lines of `arena` that `tau` needs, in order, and `tau`.
     pub fn from_arena(arena: &Compact, tau: Vec<Poly>) -> CompactProgram {
         let intermediates = arena

@@ -4,7 +4,10 @@
 mod compact;
 mod json;
 
-pub use compact::{program as compact_program, program_json as compact_json};
+pub use compact::{
+    lagrange_json as compact_lagrange_json, lagrange_program as compact_lagrange,
+    program as compact_program, program_json as compact_json,
+};
 pub use json::json;
 
 use crate::algebra::tidy::equation_terms;

@@ -58,10 +58,18 @@ impl CompactDynamics {
     /// Derives every quantity of a validated robot with its local joint frames.
     pub fn derive(robot: &Robot, joints: &[JointFrame]) -> CompactDynamics {
         let n = robot.dof();
+        // Euler–Lagrange first, so its names are its own in listings; Newton–Euler then reuses any
+        // equal value by hash-consing.
         let mut arena = arena_for(robot);
-        let tau_ne = ne_compact::tau_into(robot, joints, &mut arena, Motion::Full);
         let d = crba::mass_matrix(robot, joints, &mut arena);
         let (p, g) = potential::potential_and_gravity(robot, joints, &mut arena);
+        // g_k and P named, so that listings and equations can refer to them.
+        let g: Vec<Poly> = g
+            .into_iter()
+            .enumerate()
+            .map(|(k, gk)| arena.name(gk, &format!("g{}", k + 1)))
+            .collect();
+        let p = arena.name(p, "P");
         let d_constant = christoffel::is_constant(&d, &arena);
         let christoffel = if d_constant {
             vec![vec![vec![Poly::zero(); n]; n]; n]
@@ -70,6 +78,7 @@ impl CompactDynamics {
         };
         let c = christoffel::coriolis(&christoffel);
         let tau = christoffel::equations(&d, (!d_constant).then_some(&christoffel[..]), &g);
+        let tau_ne = ne_compact::tau_into(robot, joints, &mut arena, Motion::Full);
         let (arena, tau_ne_inertial) = inertial::tau(robot, joints, arena);
         CompactDynamics {
             arena,
