@@ -33,6 +33,7 @@
 
 mod latex;
 pub mod names;
+pub mod poly;
 mod text;
 
 use crate::algebra::{Expr, Kind, Rational};
