@@ -47,7 +47,8 @@ impl Ranks {
         if !ids.iter().all(|&id| plain(id)) {
             return None;
         }
-        let mut bases: Vec<(AtomId, Expr)> = ids.into_iter().map(|id| (id, atom::to_expr(id))).collect();
+        let mut bases: Vec<(AtomId, Expr)> =
+            ids.into_iter().map(|id| (id, atom::to_expr(id))).collect();
         bases.sort_by(|a, b| a.1.cmp(&b.1));
         Some(Ranks {
             of: bases

@@ -20,7 +20,7 @@
 //! is sound.
 
 use super::degree::{is_angle, DegreeBounds, Var};
-use super::fraction::{NoValue, PointEval};
+use super::fraction::{NoValue, Plan};
 use super::Compact;
 use crate::algebra::atom;
 use crate::algebra::fast_hash::FxHashMap;
@@ -188,31 +188,41 @@ fn randomized(
             [a, b]
         })
         .collect();
+    let plan = match Plan::new(arena, &sides) {
+        Ok(plan) => plan,
+        Err(NoValue(id)) => {
+            let why = format!("{} has no random rational value", super::atom_name(id));
+            for &s in &live {
+                result[s].get_or_insert_with(|| Outcome::Undecided(why.clone()));
+            }
+            return finish(result, degree, points, bits, d);
+        }
+    };
     let mut rng = Rng::new(opts.seed);
     for _ in 0..points {
         let point: FxHashMap<Var, i64> = vars.iter().map(|&v| (v, rng.positive(bits))).collect();
-        let mut pe = match PointEval::new(arena, &sides, &point) {
-            Ok(pe) => pe,
-            Err(NoValue(id)) => {
-                let why = format!("{} has no random rational value", super::atom_name(id));
-                for &s in &live {
-                    result[s].get_or_insert_with(|| Outcome::Undecided(why.clone()));
-                }
-                break;
-            }
-        };
-        let values = pe.values(&sides);
+        let mut values = plan.eval(&point);
         for (j, &s) in live.iter().enumerate() {
             if result[s].is_some() {
                 continue;
             }
-            let (l, r) = (&values[2 * j], &values[2 * j + 1]);
-            if !pe.bases().equal(l, r) {
-                let (l, r) = (pe.bases().to_rational(l), pe.bases().to_rational(r));
+            if !values.equal(2 * j, 2 * j + 1) {
+                let (l, r) = (values.to_rational(2 * j), values.to_rational(2 * j + 1));
                 result[s] = Some(Outcome::NotEqual(Some(witness(&point, &l, &r))));
             }
         }
     }
+    finish(result, degree, points, bits, d)
+}
+
+/// Every claim not refuted (nor undecided) at the points is proved equal.
+fn finish(
+    result: Vec<Option<Outcome>>,
+    degree: Vec<Option<u64>>,
+    points: u32,
+    bits: u32,
+    d: u64,
+) -> Vec<Outcome> {
     result
         .into_iter()
         .zip(degree)

@@ -36,8 +36,6 @@ pub struct CompactDynamics {
     pub arena: Compact,
     /// `τ_k` by Newton–Euler in body-fixed frames (index `k − 1`).
     pub tau_ne: Vec<Poly>,
-    /// `τ_k` by Newton–Euler in the inertial frame.
-    pub tau_ne_inertial: Vec<Poly>,
     /// `D(q)`, symmetric.
     pub d: Vec<Vec<Poly>>,
     /// Whether `D` is constant (no entry depends on a position): then every `c_ijk` is zero.
@@ -79,11 +77,9 @@ impl CompactDynamics {
         let c = christoffel::coriolis(&christoffel);
         let tau = christoffel::equations(&d, (!d_constant).then_some(&christoffel[..]), &g);
         let tau_ne = ne_compact::tau_into(robot, joints, &mut arena, Motion::Full);
-        let (arena, tau_ne_inertial) = inertial::tau(robot, joints, arena);
         CompactDynamics {
             arena,
             tau_ne,
-            tau_ne_inertial,
             d,
             d_constant,
             christoffel,
@@ -92,6 +88,12 @@ impl CompactDynamics {
             g,
             tau,
         }
+    }
+
+    /// A copy of the arena with `τ` by Newton–Euler in the inertial frame added, and that `τ` (built on
+    /// demand: only the proofs and listings of the inertial frame need it).
+    pub fn with_inertial(&self, robot: &Robot, joints: &[JointFrame]) -> (Compact, Vec<Poly>) {
+        inertial::tau(robot, joints, self.arena.clone())
     }
 
     /// The non-zero Christoffel symbols `(i, j, k, c_ijk)`, 1-based, in index order (zero in compact
