@@ -4,6 +4,8 @@
 //! example scene, the generic chains of 1–5 joints and seeded random chains of 1–5 joints in both DH
 //! conventions.
 
+#![allow(clippy::needless_range_loop)]
+
 use symdyn::algebra::compact::Expander;
 use symdyn::algebra::Poly;
 use symdyn::chains::{chain, random_chain};
