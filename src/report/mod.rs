@@ -38,6 +38,36 @@ pub fn lhs_terms(tau_k: &Poly) -> Vec<Expr> {
     equation_terms(&tau_k.to_expr())
 }
 
+/// The number of terms beyond which an expression is printed straight from its normal form (grouped
+/// by accelerations, velocities and leading parameter, angle sums left expanded) rather than tidied
+/// into the house style: tidying costs far more than deriving at that size and reads no better.
+pub const DISPLAY_BUDGET: usize = 200;
+
+/// Equation `k`'s left side printed in `style`: in house style ([`lhs_terms`]) while it has at most
+/// [`DISPLAY_BUDGET`] terms, straight from the normal form beyond ([`print::equation`]).
+pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
+    if tau_k.len() > DISPLAY_BUDGET {
+        if let Some(shown) = print::equation::pieces(tau_k, style) {
+            return print::equation::join(&shown);
+        }
+    }
+    print::sum_to_string(&lhs_terms(tau_k), style)
+}
+
+/// The number of terms beyond which a quantity of a JSON document (`D`, `C`, `c_ijk`, `g`, `P`) is
+/// given as its normal form rather than tidied: a document is read by programs, and tidying its many
+/// medium-sized entries would cost more than deriving them.
+pub const JSON_TIDY_BUDGET: usize = 16;
+
+/// An expression printed in `style`: simplified into the house style while it has at most `budget`
+/// terms, its normal form as it stands beyond.
+pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
+    if p.len() > budget {
+        return print::poly::poly_to_string(p, style);
+    }
+    print::to_string(&crate::algebra::simplify(&p.to_expr()), style)
+}
+
 /// The equations of motion, one per line: `(m1+m2+m3) q̈1 + (m1+m2+m3) g = u1`. In LaTeX, an
 /// `align*` environment.
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
@@ -46,7 +76,7 @@ pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
         .zip(&der.robot().inputs)
         .map(|(t, u)| {
             let input = print::to_string(&Expr::sym(Symbol::new(u)), style);
-            (print::sum_to_string(&lhs_terms(t), style), input)
+            (lhs_string(t, style), input)
         })
         .collect();
     equalities(&lines, style)
