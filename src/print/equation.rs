@@ -49,6 +49,9 @@ fn key_class(id: AtomId, stage: u8) -> bool {
 /// A term split by rank: (rank, exponent) factors, sorted.
 type Factors = Vec<(u32, i32)>;
 
+/// Terms of a sum: factors and coefficient.
+type Terms = Vec<(Factors, Rational)>;
+
 /// The display terms of an equation side, or `None` if an atom of `p` is outside the plain class
 /// (the caller then takes the canonical route).
 pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
@@ -154,7 +157,7 @@ fn grouped(r: &mut Renderer, terms: &[(Factors, Rational)], style: Style) -> Vec
             .find(|&(r, _)| atom::class(ranks.atom(r)) == Class::Param)
     };
     let mut order: Vec<Option<(u32, i32)>> = Vec::new();
-    let mut groups: FxHashMap<Option<(u32, i32)>, Vec<(Factors, Rational)>> = FxHashMap::default();
+    let mut groups: FxHashMap<Option<(u32, i32)>, Terms> = FxHashMap::default();
     for (f, c) in terms {
         let lead = lead_of(f);
         let rest: Factors = match lead {
