@@ -273,7 +273,7 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
                 .and_then(|r| r.seconds)
         };
         let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
-            (Some(a), Some(b)) if b > 0.0 => format!("{}", fmt_ratio(a / b)),
+            (Some(a), Some(b)) if b > 0.0 => fmt_ratio(a / b),
             _ => "–".into(),
         };
         for (robot, n) in e2e_robots {
