@@ -164,7 +164,7 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         "composite rigid bodies, c_ijk from ∂D/∂q, C, g, τ by both methods). `check (body)`: from ",
     );
     s.push_str("`Derivation::new` to the proof that Euler–Lagrange and Newton–Euler in body frames agree, D is ");
-    s.push_str("symmetric and Ḋ − 2C skew, each claim exact while τ expands within 3000 terms per equation, by random ");
+    s.push_str("symmetric and Ḋ − 2C skew, each claim exact while τ expands within 1000 terms per equation, by random ");
     s.push_str("rational points beyond (the proof column says which); `check` also compares Newton–Euler in the inertial ");
     s.push_str("frame. Size of τ: terms of the expanded form; operations = multiplications + additions of the printed ");
     s.push_str("canonical form (x^n as n−1 multiplications; see `symdyn::bench::size`). Peak memory: the largest VmHWM ");
@@ -316,7 +316,7 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("(derivation only, no interpreter start-up). The factor in parentheses is peer time / symdyn time ");
         s.push_str("(symdyn `check (body)`: D, Christoffel symbols, C, g and τ by Euler–Lagrange, τ by Newton–Euler in ");
         s.push_str("body frames, and the proof that they agree, that D is symmetric and Ḋ − 2C skew, in one process: ");
-        s.push_str("expanded and proved exactly while τ has at most 3000 terms per equation, compact and proved at random ");
+        s.push_str("expanded and proved exactly while τ has at most 1000 terms per equation, compact and proved at random ");
         s.push_str("rational points beyond), measured in the same run; `symdyn check` also derives and compares ");
         s.push_str("Newton–Euler in the inertial frame (last symdyn column). The peers' results are unsimplified (except ");
         s.push_str("trigsimp's D); their operation counts are their own.\n\n");

@@ -3,7 +3,7 @@
 //! Warnings go to stderr; the output is the report.
 
 use super::CliError;
-use symdyn::dynamics::check::check;
+use symdyn::dynamics::check::{check_with, CheckOptions};
 use symdyn::dynamics::ne_compact::CompactProgram;
 use symdyn::dynamics::{Derivation, Frame, Robot};
 use symdyn::parse::{parse_scene, BUILTIN_PPP};
@@ -150,9 +150,20 @@ pub fn derive_compact(
 }
 
 /// `symdyn check`: exits non-zero when any claim fails.
-pub fn check_cmd(scene: Option<&str>) -> Result<String, CliError> {
+pub fn check_cmd(
+    scene: Option<&str>,
+    budget: Option<usize>,
+    seed: Option<u64>,
+) -> Result<String, CliError> {
     let der = load(scene)?;
-    let claims = check(&der);
+    let mut opts = CheckOptions::default();
+    if let Some(b) = budget {
+        opts.proof.budget = b;
+    }
+    if let Some(s) = seed {
+        opts.proof.seed = s;
+    }
+    let claims = check_with(&der, &opts);
     let text = report::check_report(&der.robot().name, &claims);
     if claims.iter().all(|c| c.holds) {
         Ok(text)
