@@ -110,3 +110,26 @@ fn a_perturbed_equation_is_refused_with_a_witness() {
     assert_eq!(values[1], w.right);
     assert_eq!(&values[0] - &values[1], values[2]);
 }
+
+/// Constant angles (`theta = 1/3`, twists of `π/3`) get random half-angle tangents like the joint
+/// angles, so a robot with them is still proved at random points, and a surd falls back to the
+/// exact proof.
+#[test]
+fn constant_angles_and_surds_are_proved() {
+    use symdyn::dynamics::check::{check_with, CheckOptions};
+    let scene = "robot \"constants\"\ngravity [0, 0, -g]\ndh standard\n\
+        joint 1 revolute a=a1 alpha=pi/3 d=0 theta=q1+1/3\n\
+        joint 2 prismatic a=0 alpha=1/5 d=q2 theta=2/7\n\
+        joint 3 revolute a=sqrt(2) alpha=0 d=d3 theta=q3\n\
+        link 1 mass=m1 com=[r1,0,0] inertia=I1\n\
+        link 2 mass=m2 com=[0,0,r2]\n\
+        link 3 mass=m3 com=[r3,0,0] inertia=I3\n";
+    let robot = symdyn::parse::parse_scene(scene).expect("valid").robot;
+    let der = Derivation::new(robot).expect("valid robot");
+    let mut opts = CheckOptions::default();
+    opts.proof.budget = 0;
+    for c in check_with(&der, &opts) {
+        assert!(c.holds, "{}: {:?}", c.statement, c.failures);
+        assert_ne!(c.proof, ClaimProof::Undecided);
+    }
+}

@@ -32,8 +32,14 @@ struct Bound {
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Degrees(Vec<(Var, Bound)>);
 
-/// What the randomized test cannot handle: an atom with no random rational value (π, a surd, an
-/// opaque expression, the sine of a constant angle) or a negative power of a sine or cosine.
+/// What the randomized test cannot handle: an atom with no random rational value (a surd, an opaque
+/// expression) or a negative power of a sine or cosine.
+///
+/// π and the sine and cosine of a constant angle (`sin(1/3)`, `cos(π/5)`) do get random values: π as a
+/// plain variable, a constant angle as a free angle. Every identity symdyn proves comes from the same
+/// polynomial computation for any value of the scene's constants, so it holds for all of them exactly
+/// when it holds for the stated one (and by Lindemann's theorem `π` and `sin`, `cos` of a rational
+/// satisfy no other polynomial relation than `sin² + cos² = 1`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported(pub AtomId);
 
@@ -163,7 +169,7 @@ impl<'a> DegreeBounds<'a> {
                     continue;
                 }
                 match atom::class(id) {
-                    Class::Param | Class::Coord => term.add(
+                    Class::Param | Class::Coord | Class::Pi => term.add(
                         id,
                         if e > 0 {
                             Bound {
@@ -177,7 +183,7 @@ impl<'a> DegreeBounds<'a> {
                             }
                         },
                     ),
-                    Class::Sin | Class::Cos if e > 0 && atom::symbol_of(id).is_some() => {
+                    Class::Sin | Class::Cos if e > 0 => {
                         let angle = match atom::class(id) {
                             Class::Sin => id,
                             _ => atom::partner(id),
@@ -221,6 +227,10 @@ mod tests {
             d.of(&b.add(&p("y^3"))).expect("supported").total(),
             4 + 6 + 3 + 1
         );
-        assert!(d.of(&p("pi*x")).is_err());
+        assert_eq!(
+            d.of(&p("pi*x*cos(1/3)")).expect("supported").total(),
+            1 + 1 + 2
+        );
+        assert!(d.of(&p("sqrt(2)*x")).is_err());
     }
 }

@@ -135,12 +135,12 @@ impl Plan {
                         continue;
                     }
                     match atom::class(id) {
-                        Class::Sin | Class::Cos if atom::symbol_of(id).is_some() => {
+                        Class::Sin | Class::Cos if e > 0 => {
                             angles.push(sin_of(id));
                             plain.push(id);
                         }
                         Class::Param | Class::Coord if e < 0 => inverted.push(id),
-                        Class::Param | Class::Coord => plain.push(id),
+                        Class::Param | Class::Coord | Class::Pi => plain.push(id),
                         _ => return Err(NoValue(id)),
                     }
                 }

@@ -22,7 +22,6 @@
 use super::degree::{is_angle, DegreeBounds, Var};
 use super::fraction::{NoValue, Plan};
 use super::Compact;
-use crate::algebra::atom;
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::random::Rng;
 use crate::algebra::{Poly, Rational};
@@ -99,8 +98,8 @@ pub enum Outcome {
     Equal(Proof),
     /// The sides differ: their canonical forms differ (exact), or they differ at `Witness`.
     NotEqual(Option<Witness>),
-    /// Neither proof applies (an atom without rational values, such as `sin(π/5)`, and too large
-    /// to expand).
+    /// Neither proof applies (an atom without rational values, such as a surd, in sides that cannot
+    /// be expanded).
     Undecided(String),
 }
 
@@ -135,8 +134,20 @@ pub fn prove(arena: &Compact, claims: &[(&Poly, &Poly)], opts: &ProofOptions) ->
     }
     if !pending.is_empty() {
         let decided = randomized(arena, claims, &pending, opts);
+        // What random points cannot value (a surd, an opaque atom) is expanded whatever its size.
+        let mut whole = arena.expander(usize::MAX);
         for (i, o) in pending.into_iter().zip(decided) {
-            out[i] = Some(o);
+            out[i] = Some(match o {
+                Outcome::Undecided(why) => {
+                    let (a, b) = claims[i];
+                    match (whole.expand(a), whole.expand(b)) {
+                        (Ok(x), Ok(y)) if x == y => Outcome::Equal(Proof::Exact),
+                        (Ok(_), Ok(_)) => Outcome::NotEqual(None),
+                        _ => Outcome::Undecided(why),
+                    }
+                }
+                o => o,
+            });
         }
     }
     out.into_iter()
@@ -240,7 +251,15 @@ fn witness(point: &FxHashMap<Var, i64>, left: &Rational, right: &Rational) -> Wi
     let mut entries: Vec<(String, Rational, bool)> = point
         .iter()
         .map(|(&v, &r)| {
-            let name = atom::symbol_of(v).map_or_else(|| format!("#{v}"), |s| s.ascii_name());
+            let name = super::atom_name(v);
+            let name = if is_angle(v) {
+                name.trim_start_matches("sin(")
+                    .strip_suffix(')')
+                    .unwrap_or(&name)
+                    .to_string()
+            } else {
+                name
+            };
             (name, Rational::int(r), is_angle(v))
         })
         .collect();
@@ -256,7 +275,7 @@ fn witness(point: &FxHashMap<Var, i64>, left: &Rational, right: &Rational) -> Wi
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::atom::{AtomId, Class};
+    use crate::algebra::atom::{self, AtomId, Class};
     use crate::algebra::compact::eval::eval;
     use crate::algebra::to_poly;
 
