@@ -8,8 +8,8 @@
 
 use super::Compact;
 use crate::algebra::atom::{self, AtomId, Class};
-use crate::algebra::calculus::{dt as expr_dt, poly_diff};
-use crate::algebra::{to_poly, Poly, Symbol};
+use crate::algebra::calculus::{poly_diff, poly_dt};
+use crate::algebra::{Poly, Symbol};
 
 /// Which derivative.
 #[derive(Clone, Copy)]
@@ -92,11 +92,11 @@ impl Compact {
                         return Some(Poly::one());
                     }
                     match atom::class(id) {
-                        Class::Sin | Class::Cos | Class::Other => {
+                        Class::Param | Class::Coord | Class::Pi | Class::Sqrt => None,
+                        _ => {
                             let d = poly_diff(&Poly::atom(id), x);
                             (!d.is_zero()).then_some(d)
                         }
-                        _ => None,
                     }
                 }
                 Wrt::Time => time_derivative_of_atom(id),
@@ -105,39 +105,16 @@ impl Compact {
     }
 }
 
-/// `d/dt` of a plain atom (not a name).
+/// `d/dt` of a plain atom (not a name): the derivative table of the normal form's own calculus.
 fn time_derivative_of_atom(id: AtomId) -> Option<Poly> {
-    match atom::class(id) {
-        Class::Coord => {
-            let s = atom::symbol_of(id)?;
-            Some(Poly::symbol(&s.time_derivative()?))
-        }
-        Class::Sin | Class::Cos => {
-            let x = atom::symbol_of(id)?;
-            let xd = Poly::symbol(&x.time_derivative()?);
-            let partner = Poly::atom(atom::partner(id));
-            let d = if atom::class(id) == Class::Sin {
-                partner
-            } else {
-                partner.neg()
-            };
-            Some(d.mul(&xd))
-        }
-        Class::Other => match atom::lookup(id) {
-            atom::Atom::Other(e) => {
-                let d = expr_dt(&e);
-                (!d.is_zero()).then(|| to_poly(&d))
-            }
-            _ => None,
-        },
-        Class::Param | Class::Pi | Class::Sqrt => None,
-    }
+    let d = poly_dt(&Poly::atom(id));
+    (!d.is_zero()).then_some(d)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::calculus::poly_dt;
+    use crate::algebra::to_poly;
 
     fn p(s: &str) -> Poly {
         to_poly(&crate::parse::parse_expr(s).expect("valid expression"))

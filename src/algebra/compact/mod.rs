@@ -279,23 +279,18 @@ impl Compact {
             t.union_with(&d.deps);
             return;
         }
-        match atom::class(id) {
-            Class::Coord | Class::Sin | Class::Cos => {
-                if let Some(s) = atom::symbol_of(id) {
+        match (atom::class(id), atom::symbol_of(id)) {
+            (Class::Param | Class::Pi | Class::Sqrt, _) => {}
+            (Class::Coord | Class::Sin | Class::Cos, Some(s)) => {
+                t.union_with(&TimeSet::of_symbol(&s))
+            }
+            // Anything else (an opaque expression, the sine of a constant or fractional angle): the
+            // coordinates its expression mentions.
+            _ => {
+                for s in atom::to_expr(id).symbols() {
                     t.union_with(&TimeSet::of_symbol(&s));
                 }
             }
-            Class::Other => {
-                if let Some(e) = match atom::lookup(id) {
-                    atom::Atom::Other(e) => Some(e),
-                    _ => None,
-                } {
-                    for s in e.symbols() {
-                        t.union_with(&TimeSet::of_symbol(&s));
-                    }
-                }
-            }
-            Class::Param | Class::Pi | Class::Sqrt => {}
         }
     }
 
