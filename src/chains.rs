@@ -7,8 +7,13 @@
 //! `[0, 0, −g]`. A prismatic joint has a symbolic constant angle `th_i`: `θ_i = th_i`, `d_i = q_i + d_i`.
 //! The chain is produced as scene text, so every consumer (the library, the CLI, the Python peers
 //! through `symdyn`'s JSON) sees the same robot.
+//!
+//! [`random_scene`] gives seeded random chains for the tests: random joint kinds, standard or
+//! modified DH, link lengths, offsets and twists that are zero, symbolic or special (`±90°`), masses,
+//! centres of mass and inertias symbolic, numeric or absent.
 
-use crate::dynamics::{JointKind, Robot};
+use crate::algebra::random::Rng;
+use crate::dynamics::{Convention, JointKind, Robot};
 use crate::parse::parse_scene;
 
 /// The kind of joint `i` (1-based) in the generic chain.
@@ -52,6 +57,95 @@ pub fn chain(n: usize) -> Robot {
         .robot
 }
 
+/// The scene text of a random `n`-joint chain from `seed`, in the given DH convention.
+///
+/// Each joint is revolute or prismatic (the first of every robot revolute when `seed` is even); each
+/// DH constant is `0`, a symbol or a small rational, each twist `0`, `±90°`, a symbol or `π/3`; each
+/// link's mass is a symbol or a rational, its centre of mass mixes zeros, symbols and rationals, its
+/// inertia is a full symbolic tensor, a numeric diagonal or absent (a point mass). Gravity is
+/// `[0, 0, −g]` or tilted `[0, g/2, −g]`.
+pub fn random_scene(n: usize, convention: Convention, seed: u64) -> String {
+    let mut rng = Rng::new(seed ^ 0xC4A1_4E5E_ED00_0000);
+    let mut pick = |k: i64| rng.int(0, k - 1);
+    let gravity = if pick(2) == 0 {
+        "[0, 0, -g]"
+    } else {
+        "[0, g/2, -g]"
+    };
+    let dh = match convention {
+        Convention::Standard => "standard",
+        Convention::Modified => "modified",
+    };
+    let mut s = format!("robot \"random chain n={n} seed={seed}\"\ngravity {gravity}\ndh {dh}\n");
+    let constant = |p: i64, name: String| match p {
+        0 => "0".to_string(),
+        1 | 2 => name,
+        _ => format!("{}/3", p),
+    };
+    for i in 1..=n {
+        let revolute = if i == 1 && seed.is_multiple_of(2) {
+            true
+        } else {
+            pick(3) != 0
+        };
+        let a = constant(pick(5), format!("a{i}"));
+        let alpha = ["0", "90deg", "-90deg", "pi/3", "al"][pick(5) as usize].to_string();
+        let alpha = if alpha == "al" {
+            format!("al{i}")
+        } else {
+            alpha
+        };
+        let off = constant(pick(5), format!("d{i}"));
+        let (d, theta) = if revolute {
+            (off, format!("q{i}"))
+        } else {
+            let d = if off == "0" {
+                format!("q{i}")
+            } else {
+                format!("q{i}+{off}")
+            };
+            (d, constant(pick(4), format!("th{i}")))
+        };
+        let kind = if revolute { "revolute" } else { "prismatic" };
+        s.push_str(&format!(
+            "joint {i} {kind} a={a} alpha={alpha} d={d} theta={theta}\n"
+        ));
+    }
+    for i in 1..=n {
+        let mass = if pick(3) == 0 {
+            format!("{}/2", pick(5) + 1)
+        } else {
+            format!("m{i}")
+        };
+        let com: Vec<String> = ["x", "y", "z"]
+            .iter()
+            .map(|c| constant(pick(5), format!("r{c}{i}")))
+            .collect();
+        let inertia = match pick(3) {
+            0 => String::new(),
+            1 => format!(" inertia=I{i}"),
+            _ => format!(
+                " inertia=diag({}/10,{}/10,{}/10)",
+                pick(5) + 1,
+                pick(5) + 1,
+                pick(5) + 1
+            ),
+        };
+        s.push_str(&format!(
+            "link {i} mass={mass} com=[{}]{inertia}\n",
+            com.join(",")
+        ));
+    }
+    s
+}
+
+/// [`random_scene`] as a robot.
+pub fn random_chain(n: usize, convention: Convention, seed: u64) -> Robot {
+    parse_scene(&random_scene(n, convention, seed))
+        .expect("the generated random scene is valid")
+        .robot
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -65,5 +159,23 @@ mod tests {
                 assert_eq!(j.kind, joint_kind(k + 1));
             }
         }
+    }
+
+    #[test]
+    fn random_chains_parse_and_vary() {
+        let mut kinds = std::collections::HashSet::new();
+        for seed in 0..40 {
+            for conv in [Convention::Standard, Convention::Modified] {
+                let r = random_chain(4, conv, seed);
+                assert_eq!(r.dof(), 4);
+                assert_eq!(r.convention, conv);
+                kinds.extend(r.joints.iter().map(|j| j.kind.name()));
+            }
+        }
+        assert_eq!(kinds.len(), 2, "both joint kinds occur");
+        assert_ne!(
+            random_scene(5, Convention::Standard, 1),
+            random_scene(5, Convention::Standard, 2)
+        );
     }
 }

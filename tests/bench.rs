@@ -134,10 +134,9 @@ fn quick_bench_writes_consistent_results() {
             "el",
             "ne",
             "ne-compact",
-            "proof",
-            "el+ne+proof",
-            "proof-body",
-            "el+ne+proof-body",
+            "el-compact",
+            "check-body",
+            "check",
             "eval-tau",
             "eval-tau-program",
             "eval-d",
@@ -160,10 +159,33 @@ fn quick_bench_writes_consistent_results() {
         assert_eq!(mults + adds, ops);
     }
     assert_eq!(row(&rows, "chain-1", "eval-tau")[1], "1");
-    for m in ["e2e-sheet", "e2e-check"] {
-        let r = row(&rows, "ppp", m);
-        assert_eq!((r[3].as_str(), r[5].as_str()), ("ok", "10"), "{r:?}");
+    // The built-in PPP arm (10 processes each in --quick), then every command and format on each
+    // example (3 processes at least).
+    let ppp: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| r[0] == "ppp" && (r[2] == "e2e-sheet" || r[2] == "e2e-check"))
+        .collect();
+    assert!(ppp.iter().any(|r| r[5] == "10"), "{ppp:?}");
+    for robot in ["ppp", "rpp"] {
+        for m in [
+            "e2e-derive-text",
+            "e2e-derive-latex",
+            "e2e-derive-json",
+            "e2e-derive-compact",
+            "e2e-check",
+            "e2e-sheet",
+        ] {
+            let r = rows
+                .iter()
+                .rev()
+                .find(|r| r[0] == robot && r[2] == m)
+                .unwrap_or_else(|| panic!("no row {robot} {m}"));
+            assert_eq!(r[3], "ok", "{r:?}");
+            assert!(r[5].parse::<u64>().unwrap() >= 3, "{r:?}");
+        }
     }
+    // check-body says how each claim was proved: the small robots exactly.
+    assert!(row(&rows, "ppp", "check-body")[11].contains("(exact)"));
     let md = std::fs::read_to_string(out.join("benchmarks.md")).unwrap();
     for needle in [
         "CPU",
@@ -171,6 +193,7 @@ fn quick_bench_writes_consistent_results() {
         "`symdyn bench --quick",
         "| chain-2 | 2 |",
         "| ppp | 3 |",
+        "derive ÷ EL",
     ] {
         assert!(md.contains(needle), "{needle}\n{md}");
     }

@@ -114,8 +114,34 @@ fn every_example_is_proved() {
     for n in names {
         let (out, err, code) = symdyn(&["check", &format!("examples/{n}")]);
         assert_eq!(code, 0, "{n}: {out}{err}");
-        assert_eq!(out.matches("proved:").count(), 4, "{n}");
+        assert_eq!(out.matches("proved [").count(), 4, "{n}: {out}");
+        // The small arms are proved exactly under the default budget.
+        if !n.starts_with("stanford") {
+            assert_eq!(
+                out.matches("proved [exact]:").count(),
+                4,
+                "{n}: every claim proved exactly"
+            );
+        }
     }
+    // The budget decides: the Stanford arm exactly with a larger one, the elbow at random points
+    // with none.
+    let (out, _, code) = symdyn(&["check", "--budget", "10000", "examples/stanford.scene"]);
+    assert_eq!(
+        (code, out.matches("proved [exact]:").count()),
+        (0, 4),
+        "{out}"
+    );
+    let (out, _, code) = symdyn(&[
+        "check",
+        "--budget",
+        "0",
+        "--seed",
+        "7",
+        "examples/elbow.scene",
+    ]);
+    assert_eq!(code, 0, "{out}");
+    assert_eq!(out.matches("proved [randomized: ").count(), 3, "{out}");
 }
 
 #[test]
@@ -149,4 +175,59 @@ fn scene_errors_and_warnings() {
     let (_, err, code) = symdyn(&["derive", "no/such/file.scene"]);
     assert_eq!(code, 2);
     assert!(err.contains("cannot read no/such/file.scene"), "{err}");
+}
+
+/// Large equations are printed straight from the normal form (grouped, not tidied); what is printed
+/// still reads back, term for term, to the derived polynomials: the ASCII equations and every
+/// quantity of the JSON document of the Stanford arm and the numeric PUMA 560 (the all-symbolic one
+/// takes minutes to parse back in a debug build).
+#[test]
+fn large_outputs_read_back_to_the_derived_polynomials() {
+    use symdyn::algebra::to_poly;
+    use symdyn::dynamics::Derivation;
+    use symdyn::parse::{parse_expr, parse_scene};
+    for name in ["stanford", "puma560"] {
+        let path = format!("examples/{name}.scene");
+        let text = std::fs::read_to_string(&path).expect("example scene");
+        let der = Derivation::new(parse_scene(&text).expect("valid").robot).expect("valid");
+        let el = der.lagrange();
+        let read = |s: &str| to_poly(&parse_expr(s).expect("ASCII reads back"));
+        let (out, err, code) = symdyn(&["derive", "--ascii", &path]);
+        // The published PUMA inertias of links 1 and 3 draw triangle-inequality warnings, nothing else.
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(
+            err.is_empty() || (name == "puma560" && err.matches("warning:").count() == 2),
+            "{name}: {err}"
+        );
+        for (k, line) in out.lines().enumerate() {
+            let (lhs, _) = line.rsplit_once(" = ").expect("lhs = input");
+            assert_eq!(read(lhs), el.tau[k], "{name}: equation {}", k + 1);
+        }
+        let (out, err, code) = symdyn(&["derive", "--format", "json", &path]);
+        assert_eq!(code, 0, "{name}: {err}");
+        assert!(
+            err.is_empty() || (name == "puma560" && err.matches("warning:").count() == 2),
+            "{name}: {err}"
+        );
+        let doc: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+        let s = |v: &serde_json::Value| read(v.as_str().expect("a string"));
+        let n = der.robot().dof();
+        for k in 0..n {
+            for j in 0..n {
+                assert_eq!(s(&doc["mass_matrix"][k][j]), el.d[k][j], "{name} d{k}{j}");
+                assert_eq!(s(&doc["coriolis"][k][j]), el.c[k][j], "{name} C{k}{j}");
+            }
+            assert_eq!(s(&doc["gravity"][k]), el.g[k], "{name} g{k}");
+            assert_eq!(s(&doc["tau"][k]), el.tau[k], "{name} τ{k}");
+        }
+        assert_eq!(s(&doc["potential"]), el.p, "{name} P");
+        for c in doc["christoffel"].as_array().expect("a list") {
+            let (i, j, k) = (
+                c["i"].as_u64().unwrap() as usize - 1,
+                c["j"].as_u64().unwrap() as usize - 1,
+                c["k"].as_u64().unwrap() as usize - 1,
+            );
+            assert_eq!(s(&c["value"]), el.christoffel[i][j][k], "{name} c{i}{j}{k}");
+        }
+    }
 }

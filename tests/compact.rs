@@ -260,24 +260,109 @@ fn symdyn(args: &[&str]) -> (String, String, i32) {
     )
 }
 
+/// `derive --compact` in every method and frame, read back: the ASCII listing's lines define the
+/// names in order (`name = value`), its last lines give each input's equation, and substituting the
+/// names back gives exactly the expanded τ of that method.
 #[test]
-fn cli_compact_needs_newton_euler_in_body_frames() {
-    for args in [
-        vec!["derive", "--compact"],
-        vec!["derive", "--compact", "--method", "lagrange"],
-        vec![
-            "derive",
-            "--compact",
-            "--method",
-            "newton-euler",
-            "--frame",
-            "inertial",
-        ],
-    ] {
-        let (out, err, code) = symdyn(&args);
-        assert_eq!((code, out.as_str()), (1, ""), "{args:?}");
-        assert!(err.contains("--compact"), "{args:?}: {err}");
+fn cli_compact_listings_of_every_method_read_back() {
+    use symdyn::algebra::compact::Compact;
+    use symdyn::algebra::to_poly;
+    use symdyn::parse::parse_expr;
+    for name in ["elbow", "scara", "stanford"] {
+        let path = format!("examples/{name}.scene");
+        let robot = example(name);
+        let der = Derivation::new(robot.clone()).expect("valid robot");
+        for (method, frame) in [
+            ("lagrange", "body"),
+            ("newton-euler", "body"),
+            ("newton-euler", "inertial"),
+        ] {
+            let args = [
+                "derive",
+                "--compact",
+                "--ascii",
+                "--method",
+                method,
+                "--frame",
+                frame,
+                &path,
+            ];
+            let (out, err, code) = symdyn(&args);
+            assert_eq!((code, err.as_str()), (0, ""), "{args:?}");
+            let mut arena = Compact::new();
+            let mut tau = Vec::new();
+            for line in out.lines() {
+                let (lhs, rhs) = line.split_once(" = ").expect("left = right");
+                if robot.inputs.iter().any(|u| u == lhs) {
+                    tau.push(to_poly(&parse_expr(rhs).expect("ASCII reads back")));
+                } else if robot.inputs.iter().any(|u| u == rhs) {
+                    // Euler–Lagrange: `equation = input`.
+                    tau.push(to_poly(&parse_expr(lhs).expect("ASCII reads back")));
+                } else {
+                    let value = to_poly(&parse_expr(rhs).expect("ASCII reads back"));
+                    arena.define(Symbol::new(lhs), value);
+                }
+            }
+            let want = match (method, frame) {
+                ("lagrange", _) => &der.lagrange().tau,
+                (_, "body") => &der.newton_euler(Frame::Body).tau,
+                _ => &der.newton_euler(Frame::Inertial).tau,
+            };
+            assert_eq!(tau.len(), want.len(), "{args:?}");
+            let mut ex = arena.expander(usize::MAX);
+            for (k, (t, w)) in tau.iter().zip(want).enumerate() {
+                assert_eq!(&ex.expand(t).expect("no budget"), w, "{args:?}: τ{}", k + 1);
+            }
+        }
     }
+}
+
+/// `derive --compact --format json` for Euler–Lagrange: every quantity over the names defined by
+/// `intermediates`, each equal to the expanded one.
+#[test]
+fn cli_compact_lagrange_json_defines_every_quantity() {
+    use symdyn::algebra::compact::Compact;
+    use symdyn::algebra::to_poly;
+    use symdyn::parse::parse_expr;
+    let (out, err, code) = symdyn(&[
+        "derive",
+        "--compact",
+        "--method",
+        "lagrange",
+        "--format",
+        "json",
+        "examples/scara.scene",
+    ]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let mut arena = Compact::new();
+    for line in doc["intermediates"].as_array().expect("a list") {
+        let value = to_poly(&parse_expr(line["value"].as_str().unwrap()).expect("ASCII"));
+        arena.define(Symbol::new(line["name"].as_str().unwrap()), value);
+    }
+    let der = Derivation::new(example("scara")).expect("valid robot");
+    let el = der.lagrange();
+    let mut ex = arena.expander(usize::MAX);
+    let mut read = |v: &serde_json::Value| -> Poly {
+        ex.expand(&to_poly(
+            &parse_expr(v.as_str().expect("a string")).expect("ASCII"),
+        ))
+        .expect("no budget")
+    };
+    for k in 0..4 {
+        for j in 0..4 {
+            assert_eq!(read(&doc["mass_matrix"][k][j]), el.d[k][j], "d{k}{j}");
+            assert_eq!(read(&doc["coriolis"][k][j]), el.c[k][j], "C{k}{j}");
+        }
+        assert_eq!(read(&doc["gravity"][k]), el.g[k], "g{k}");
+        assert_eq!(read(&doc["tau"][k]), el.tau[k], "τ{k}");
+        assert_eq!(read(&doc["equations"][k]["lhs"]), el.tau[k], "equation {k}");
+    }
+    assert_eq!(read(&doc["potential"]), el.p);
+    assert_eq!(
+        doc["christoffel"].as_array().map(Vec::len),
+        Some(el.nonzero_christoffel().len())
+    );
 }
 
 /// The ASCII program read back by the expression parser and expanded is the Newton–Euler τ.

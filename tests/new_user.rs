@@ -318,7 +318,7 @@ fn fractional_joint_rates_are_exact() {
     }
     let (out, err, code) = symdyn(&["check", &scene_file("fractional.scene", FRACTIONAL)]);
     assert_eq!(code, 0, "{out}{err}");
-    assert_eq!(out.matches("proved:").count(), 4, "{out}");
+    assert_eq!(out.matches("proved [exact]:").count(), 4, "{out}");
     let (out, _, _) = symdyn(&[
         "simplify",
         "sin(q1/2)^2 + cos(1/2*q1)^2 - (sin(q1) - 2*sin(q1/2)*cos(q1/2))",

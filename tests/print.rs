@@ -862,3 +862,36 @@ proptest! {
         }
     }
 }
+
+/// The polynomial printer (`print::poly`, which never builds the canonical expression) prints every
+/// derived quantity of every example exactly as the expression printer prints its canonical form, in
+/// all three styles.
+#[test]
+fn polynomial_printer_matches_the_expression_printer_on_every_example() {
+    use symdyn::dynamics::{Derivation, Frame};
+    use symdyn::print::poly::poly_to_string;
+    for name in ["ppp", "elbow", "rpp", "scara", "stanford", "puma560"] {
+        let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).expect("example scene");
+        let robot = symdyn::parse::parse_scene(&text).expect("valid").robot;
+        let der = Derivation::new(robot).expect("valid robot");
+        let el = der.lagrange();
+        let ne = der.newton_euler(Frame::Body);
+        let mut polys: Vec<&symdyn::algebra::Poly> = el.d.iter().flatten().collect();
+        polys.extend(el.c.iter().flatten());
+        polys.extend(el.g.iter());
+        polys.push(&el.p);
+        polys.extend(el.tau.iter());
+        polys.extend(ne.omega.iter().flat_map(|v| v.0.iter()));
+        polys.extend(ne.f.iter().flat_map(|v| v.0.iter()));
+        for p in polys {
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                assert_eq!(
+                    poly_to_string(p, style),
+                    print::to_string(&p.to_expr(), style),
+                    "{name}, {style:?}"
+                );
+            }
+        }
+    }
+}

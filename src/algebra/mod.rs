@@ -6,10 +6,13 @@
 //! - [`expr`]: the canonical [`Expr`] and its constructors; [`number`], [`symbol`]: its leaves.
 //! - [`poly`], [`atom`], [`normal`]: the polynomial normal form and the zero test.
 //! - [`calculus`]: `∂/∂x` and `d/dt`; [`mod@subs`], [`eval`]: substitution and numbers.
+//! - [`compact`]: named, hash-consed intermediates, their derivatives, values and identity proofs.
+//! - [`random`]: the deterministic generator of random points.
 
 pub mod atom;
 pub mod calculus;
 pub mod chebyshev;
+pub mod compact;
 pub mod error;
 pub mod eval;
 pub mod expand;
@@ -20,6 +23,7 @@ pub mod normal;
 pub mod number;
 pub mod pi_field;
 pub mod poly;
+pub mod random;
 pub mod simplify;
 pub mod subs;
 pub mod symbol;

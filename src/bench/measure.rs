@@ -11,7 +11,7 @@ use super::robots::RobotSpec;
 use super::size::Size;
 use super::BenchError;
 use crate::algebra::Symbol;
-use crate::dynamics::check::{agreement, check_frames};
+use crate::dynamics::check::{check_frames, ClaimProof};
 use crate::dynamics::ne_compact::CompactProgram;
 use crate::dynamics::{numeric as ne_numeric, Derivation, Frame, Robot};
 use crate::numeric::{compile, compile_tau, robot_parameters};
@@ -29,7 +29,12 @@ pub enum Method {
     /// Newton–Euler τ in body-fixed frames as a compact program of named intermediates
     /// ([`crate::dynamics::ne_compact`]); its size is the program's lines and operations.
     NewtonEulerCompact,
-    /// Both derivations, then the proof; gives the records `proof` and `el+ne+proof`.
+    /// Every quantity in compact form ([`crate::dynamics::compact`]): `D` by composite rigid
+    /// bodies, the Christoffel symbols, `C`, `g`, `τ` by Euler–Lagrange and Newton–Euler.
+    LagrangeCompact,
+    /// `symdyn check` from `Derivation::new`: the records `check-body` (Euler–Lagrange against
+    /// Newton–Euler in body frames, `D` symmetric, `Ḋ − 2C` skew, each proof exact or randomized by
+    /// size) and `check` (also the inertial frame), each in a derivation of its own.
     Proof,
     /// One call of the compiled τ(q, q̇, q̈).
     EvalTau,
@@ -44,10 +49,11 @@ pub enum Method {
 
 impl Method {
     /// Every method, in the order the runner measures them.
-    pub const ALL: [Method; 8] = [
+    pub const ALL: [Method; 9] = [
         Method::Lagrange,
         Method::NewtonEuler,
         Method::NewtonEulerCompact,
+        Method::LagrangeCompact,
         Method::Proof,
         Method::EvalTau,
         Method::EvalTauProgram,
@@ -61,6 +67,7 @@ impl Method {
             Method::Lagrange => "el",
             Method::NewtonEuler => "ne",
             Method::NewtonEulerCompact => "ne-compact",
+            Method::LagrangeCompact => "el-compact",
             Method::Proof => "proof",
             Method::EvalTau => "eval-tau",
             Method::EvalTauProgram => "eval-tau-program",
@@ -78,31 +85,7 @@ impl Method {
     }
 }
 
-/// A small deterministic generator (splitmix64), so runs are repeatable without a dependency.
-#[derive(Clone, Debug)]
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator from a seed.
-    pub fn new(seed: u64) -> Rng {
-        Rng(seed)
-    }
-
-    /// A uniform number in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A uniform number in `[lo, hi)`.
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+pub use crate::algebra::random::Rng;
 
 /// Random values for every parameter of the robot (`g` = 9.81, the rest in `[0.5, 1.5]`).
 pub fn random_parameters(robot: &Robot, rng: &mut Rng) -> HashMap<Symbol, f64> {
@@ -232,45 +215,53 @@ pub fn measure(
             );
             Ok(vec![r])
         }
-        Method::Proof => {
-            // The body-frame proof first (Euler–Lagrange, Newton–Euler in body frames, EL = NE, D
-            // symmetric, Ḋ − 2C skew), then the inertial-frame Newton–Euler and its comparison on the
-            // same derivation: `el+ne+proof` is the whole of `symdyn check`.
+        Method::LagrangeCompact => {
             let t = Instant::now();
             let der = derivation(spec, robot)?;
-            der.lagrange();
-            der.newton_euler(Frame::Body);
-            let t_proof = Instant::now();
-            let mut claims = check_frames(&der, &[Frame::Body]);
-            let proof_body = t_proof.elapsed().as_secs_f64();
-            let body_total = t.elapsed().as_secs_f64();
-            let body_claims = claims.len();
-            claims.push(agreement(&der, Frame::Inertial));
-            let proof = t_proof.elapsed().as_secs_f64();
-            let total = t.elapsed().as_secs_f64();
-            let failed: Vec<&str> = claims
-                .iter()
-                .filter(|c| !c.holds)
-                .map(|c| c.statement.as_str())
-                .collect();
-            let mut recs = vec![
-                ok("proof", proof),
-                ok("el+ne+proof", total),
-                ok("proof-body", proof_body),
-                ok("el+ne+proof-body", body_total),
-            ];
-            for r in &mut recs {
+            let cd = der.compact();
+            let secs = t.elapsed().as_secs_f64();
+            let mut r = ok(method.name(), secs);
+            r.terms = Some(cd.arena.len() as u64);
+            r.note = format!(
+                "{} named intermediates (D, c_ijk, C, g, τ by both methods)",
+                cd.arena.len()
+            );
+            Ok(vec![r])
+        }
+        Method::Proof => {
+            let mut recs = Vec::new();
+            for (name, frames) in [
+                ("check-body", vec![Frame::Body]),
+                ("check", vec![Frame::Body, Frame::Inertial]),
+            ] {
+                let t = Instant::now();
+                let der = derivation(spec, robot.clone())?;
+                let claims = check_frames(&der, &frames);
+                let mut r = ok(name, t.elapsed().as_secs_f64());
+                let failed: Vec<&str> = claims
+                    .iter()
+                    .filter(|c| !c.holds)
+                    .map(|c| c.statement.as_str())
+                    .collect();
+                let randomized = claims
+                    .iter()
+                    .filter(|c| matches!(c.proof, ClaimProof::Randomized { .. }))
+                    .count();
                 if failed.is_empty() {
-                    r.note = format!("{} claims proved", claims.len());
+                    r.note = format!(
+                        "{} claims proved ({})",
+                        claims.len(),
+                        if randomized == 0 {
+                            "exact".to_string()
+                        } else {
+                            format!("{randomized} by random points")
+                        }
+                    );
                 } else {
                     r.status = Status::Failed;
                     r.note = format!("not proved: {}", failed.join("; "));
                 }
-            }
-            if failed.is_empty() {
-                for r in &mut recs[2..] {
-                    r.note = format!("{body_claims} claims proved (body frames)");
-                }
+                recs.push(r);
             }
             Ok(recs)
         }

@@ -76,8 +76,9 @@ pub struct Ratio {
     pub robot: String,
     /// The peer method.
     pub peer: String,
-    /// symdyn's seconds (`el+ne+proof-body`: Euler–Lagrange, Newton–Euler in body frames and the
-    /// proof that they agree, D symmetric, Ḋ − 2C skew; else `el+ne+proof`).
+    /// symdyn's seconds (`check-body`: D, the Christoffel symbols, C, g and τ by Euler–Lagrange, τ
+    /// by Newton–Euler in body frames, and the proof that they agree, D symmetric, Ḋ − 2C skew; else
+    /// `check`).
     pub symdyn: f64,
     /// The peer's seconds.
     pub peer_seconds: f64,
@@ -89,8 +90,8 @@ pub struct Ratio {
 pub fn ratios(records: &[Record]) -> Vec<Ratio> {
     let mut out = Vec::new();
     for (robot, _) in robots_in(records, &PEERS) {
-        let Some(sd) = find(records, &robot, "el+ne+proof-body")
-            .or_else(|| find(records, &robot, "el+ne+proof"))
+        let Some(sd) = find(records, &robot, "check-body")
+            .or_else(|| find(records, &robot, "check"))
             .filter(|r| r.status == Status::Ok)
             .and_then(|r| r.seconds)
         else {
@@ -156,27 +157,28 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push('\n');
     }
 
-    s.push_str("## Derivation\n\nWall time of one derivation in a fresh process (kinematics included, parsing not): ");
-    s.push_str("Euler–Lagrange (D, Christoffel symbols, C, g, τ), Newton–Euler (τ, body frames), the proof in body ");
-    s.push_str("frames (EL = NE, D symmetric, Ḋ − 2C skew, by the exact zero test) alone and with both derivations ");
-    s.push_str("(from `Derivation::new`), and the whole of `symdyn check` (which also derives Newton–Euler in the ");
+    s.push_str("## Derivation\n\nWall time of one derivation in a fresh process (kinematics included, parsing not). ");
+    s.push_str("Expanded: Euler–Lagrange (D, Christoffel symbols, C, g, τ) and Newton–Euler (τ, body frames) in the ");
+    s.push_str("canonical normal form. Compact: every quantity as named intermediates (`dynamics::compact`: D by ");
     s.push_str(
-        "inertial frame and proves it equal). Size of τ: terms of the expanded form; operations = ",
+        "composite rigid bodies, c_ijk from ∂D/∂q, C, g, τ by both methods). `check (body)`: from ",
     );
-    s.push_str("multiplications + additions of the printed canonical form (x^n as n−1 multiplications; see ");
-    s.push_str(
-        "`symdyn::bench::size`). Peak memory: the largest VmHWM of the measuring processes.\n\n",
-    );
+    s.push_str("`Derivation::new` to the proof that Euler–Lagrange and Newton–Euler in body frames agree, D is ");
+    s.push_str("symmetric and Ḋ − 2C skew, each claim exact while τ expands within 1000 terms per equation, by random ");
+    s.push_str("rational points beyond (the proof column says which); `check` also compares Newton–Euler in the inertial ");
+    s.push_str("frame. Size of τ: terms of the expanded form; operations = multiplications + additions of the printed ");
+    s.push_str("canonical form (x^n as n−1 multiplications; see `symdyn::bench::size`). Peak memory: the largest VmHWM ");
+    s.push_str("of the measuring processes.\n\n");
     s.push_str("The compact Newton–Euler (`derive --compact`, `dynamics::ne_compact`) is τ as a program of named ");
     s.push_str("intermediates, each exact and canonical; its size is its lines and their operations (no sharing counted).\n\n");
-    s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | proof (body) | EL+NE+proof (body) | check (both frames) | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS |\n");
-    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | compact (all quantities) | check (body) | check (both frames) | proof | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS |\n");
+    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
     let deriv = [
         "el",
         "ne",
-        "proof-body",
-        "el+ne+proof-body",
-        "el+ne+proof",
+        "el-compact",
+        "check-body",
+        "check",
         "ne-compact",
     ];
     for (robot, n) in robots_in(records, &deriv) {
@@ -201,13 +203,17 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             .filter(|r| r.status == Status::Ok)
             .map(|r| format!("{} / {}", opt(r.terms), opt(r.ops)))
             .unwrap_or_else(|| "–".into());
+        let check_body = find(records, &robot, "check-body");
+        let proof = check_body
+            .map(|r| r.note.trim_start_matches(|c: char| !c.is_ascii_digit()))
+            .unwrap_or("–");
         s.push_str(&format!(
-            "| {robot} | {n} | {} | {} | {} | {} | {} | {} | {} | {} | {compact_size} | {rss} |\n",
+            "| {robot} | {n} | {} | {} | {} | {} | {} | {proof} | {} | {} | {} | {compact_size} | {rss} |\n",
             cell(el),
             cell(find(records, &robot, "ne")),
-            cell(find(records, &robot, "proof-body")),
-            cell(find(records, &robot, "el+ne+proof-body")),
-            cell(find(records, &robot, "el+ne+proof")),
+            cell(find(records, &robot, "el-compact")),
+            cell(check_body),
+            cell(find(records, &robot, "check")),
             size.0,
             size.1,
             cell(compact),
@@ -238,24 +244,68 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         }
     }
 
-    let e2e: Vec<&Record> = records
+    let ppp_e2e: Vec<&Record> = records
         .iter()
-        .filter(|r| r.method.starts_with("e2e-"))
+        .filter(|r| r.robot == "ppp" && (r.method == "e2e-sheet" || r.method == "e2e-check"))
         .collect();
-    if !e2e.is_empty() {
-        s.push_str("\n## End to end\n\nMedian wall time of a whole `symdyn` process on the built-in PPP arm ");
+    let cmds = [
+        "e2e-derive-text",
+        "e2e-derive-latex",
+        "e2e-derive-json",
+        "e2e-derive-compact",
+        "e2e-check",
+        "e2e-sheet",
+    ];
+    let e2e_robots = robots_in(records, &cmds[..4]);
+    if !ppp_e2e.is_empty() || !e2e_robots.is_empty() {
+        s.push_str("\n## End to end\n\nMedian wall time of whole `symdyn` processes (start, parse, derive, prove, ");
         s.push_str(
-            "(start, parse, derive both ways, prove, print; output discarded). Target: < 5 ms.\n\n",
+            "print; output discarded), so that printing can never hide behind a fast derivation. ",
         );
-        s.push_str("| command | median | processes | note |\n| --- | --- | --- | --- |\n");
-        for r in e2e {
-            s.push_str(&format!(
-                "| `symdyn {}` | {} | {} | {} |\n",
-                r.method.trim_start_matches("e2e-"),
-                cell(Some(r)),
-                opt(r.calls),
-                r.note
+        s.push_str("`derive ÷ EL` is the JSON `derive` (Euler–Lagrange, printed in full) over the expanded Euler–Lagrange ");
+        s.push_str("derivation alone (table above); `sheet ÷ check` the sheet over `symdyn check`. Pages: of the sheet ");
+        s.push_str("compiled by pdflatex, with the overfull boxes its log reports.\n\n");
+        s.push_str("| robot | n | derive (text) | derive (LaTeX) | derive (JSON) | derive --compact | check | sheet | derive ÷ EL | sheet ÷ check | sheet pages |\n");
+        s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        let secs = |robot: &str, m: &str| {
+            find(records, robot, m)
+                .filter(|r| r.status == Status::Ok)
+                .and_then(|r| r.seconds)
+        };
+        let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) if b > 0.0 => fmt_ratio(a / b),
+            _ => "–".into(),
+        };
+        for (robot, n) in e2e_robots {
+            let mut row = format!("| {robot} | {n} |");
+            for m in cmds {
+                row.push_str(&format!(" {} |", cell(find(records, &robot, m))));
+            }
+            let pages = find(records, &robot, "sheet-pages")
+                .map(|r| match r.status {
+                    Status::Ok => r.note.clone(),
+                    st => st.name().to_string(),
+                })
+                .unwrap_or_else(|| "–".into());
+            row.push_str(&format!(
+                " {} | {} | {pages} |\n",
+                ratio(secs(&robot, "e2e-derive-json"), secs(&robot, "el")),
+                ratio(secs(&robot, "e2e-sheet"), secs(&robot, "e2e-check")),
             ));
+            s.push_str(&row);
+        }
+        if !ppp_e2e.is_empty() {
+            s.push_str("\nThe built-in PPP arm, more processes (target < 5 ms):\n\n");
+            s.push_str("| command | median | processes | note |\n| --- | --- | --- | --- |\n");
+            for r in ppp_e2e {
+                s.push_str(&format!(
+                    "| `symdyn {}` | {} | {} | {} |\n",
+                    r.method.trim_start_matches("e2e-"),
+                    cell(Some(r)),
+                    opt(r.calls),
+                    r.note
+                ));
+            }
         }
     }
 
@@ -264,20 +314,21 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("\n## Peers\n\nThe plain Euler–Lagrange derivation (transforms, Jacobians, D, Christoffel symbols, g) ");
         s.push_str("by `bench/peers/el_peer.py` with SymPy, SymPy + trigsimp and SymEngine; seconds are the peer's own ");
         s.push_str("(derivation only, no interpreter start-up). The factor in parentheses is peer time / symdyn time ");
-        s.push_str("(symdyn: D, Christoffel symbols, C, g by Euler–Lagrange, τ by Newton–Euler in body frames, all in ");
-        s.push_str("canonical form, and the proof that they agree, that D is symmetric and Ḋ − 2C skew, in one process), ");
-        s.push_str("measured in the same run; `symdyn check` also derives and compares Newton–Euler in the inertial frame ");
-        s.push_str("(last symdyn column). The peers' results are unsimplified (except trigsimp's D); their operation ");
-        s.push_str("counts are their own.\n\n");
-        s.push_str("| robot | n | symdyn EL | symdyn EL+NE+proof | symdyn check (both frames) | SymPy | SymPy + trigsimp | SymEngine | peer ops (SymPy / trigsimp / SymEngine) |\n");
+        s.push_str("(symdyn `check (body)`: D, Christoffel symbols, C, g and τ by Euler–Lagrange, τ by Newton–Euler in ");
+        s.push_str("body frames, and the proof that they agree, that D is symmetric and Ḋ − 2C skew, in one process: ");
+        s.push_str("expanded and proved exactly while τ has at most 1000 terms per equation, compact and proved at random ");
+        s.push_str("rational points beyond), measured in the same run; `symdyn check` also derives and compares ");
+        s.push_str("Newton–Euler in the inertial frame (last symdyn column). The peers' results are unsimplified (except ");
+        s.push_str("trigsimp's D); their operation counts are their own.\n\n");
+        s.push_str("| robot | n | symdyn EL (expanded) | symdyn check (body) | symdyn check (both frames) | SymPy | SymPy + trigsimp | SymEngine | peer ops (SymPy / trigsimp / SymEngine) |\n");
         s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
         let rs = ratios(records);
         for (robot, n) in peer_robots {
             let mut row = format!(
                 "| {robot} | {n} | {} | {} | {} |",
                 cell(find(records, &robot, "el")),
-                cell(find(records, &robot, "el+ne+proof-body")),
-                cell(find(records, &robot, "el+ne+proof"))
+                cell(find(records, &robot, "check-body")),
+                cell(find(records, &robot, "check"))
             );
             let mut ops = Vec::new();
             for peer in PEERS {
@@ -363,7 +414,7 @@ mod tests {
     #[test]
     fn ratios_pair_within_a_robot() {
         let records = vec![
-            rec("chain-6", "el+ne+proof", 0.5),
+            rec("chain-6", "check", 0.5),
             rec("chain-6", "sympy", 10.0),
             rec("chain-6", "symengine", 1.0),
             rec("chain-7", "sympy", 20.0),

@@ -157,7 +157,7 @@ fn last_line(s: &str) -> String {
 /// The record names a method's child produces.
 fn record_methods(m: Method) -> Vec<&'static str> {
     match m {
-        Method::Proof => vec!["proof", "el+ne+proof", "proof-body", "el+ne+proof-body"],
+        Method::Proof => vec!["check-body", "check"],
         _ => vec![m.name()],
     }
 }
@@ -219,12 +219,24 @@ impl Runner {
         }
     }
 
-    /// Median wall time of `runs` whole processes `symdyn ARGS`, output discarded.
-    fn end_to_end(&self, method: &str, args: &[&str], runs: usize) -> Record {
+    /// Median wall time of whole processes `symdyn ARGS` (output discarded) for robot `robot`:
+    /// `runs` of them, or fewer once they have taken `budget` seconds (three at least).
+    fn end_to_end(
+        &self,
+        (robot, dof): (&str, usize),
+        method: &str,
+        args: &[&str],
+        runs: usize,
+        budget: f64,
+    ) -> Record {
         eprintln!("bench: end to end, symdyn {}", args.join(" "));
-        let mut rec = Record::new("ppp", 3, method, Status::Ok);
+        let mut rec = Record::new(robot, dof, method, Status::Ok);
         let mut times = Vec::with_capacity(runs);
-        for _ in 0..runs {
+        let started = Instant::now();
+        for i in 0..runs {
+            if i >= 3 && started.elapsed().as_secs_f64() > budget {
+                break;
+            }
             let start = Instant::now();
             let status = Command::new(&self.exe)
                 .args(args)
@@ -249,7 +261,7 @@ impl Runner {
         }
         times.sort_by(f64::total_cmp);
         rec.seconds = Some(times[times.len() / 2]);
-        rec.calls = Some(runs as u64);
+        rec.calls = Some(times.len() as u64);
         rec.note = format!(
             "min {}, max {}{}",
             symdyn::bench::report::fmt_seconds(times[0]),
@@ -262,6 +274,60 @@ impl Runner {
         );
         rec
     }
+}
+
+/// The pages of an example's solution sheet, from the pdflatex log (`Output written on … (N pages`);
+/// the record's `terms` hold the pages. Skipped when pdflatex is absent.
+fn sheet_pages(exe: &Path, name: &str, dof: usize, out: &Path) -> Record {
+    let mut rec = Record::new(name, dof, "sheet-pages", Status::Ok);
+    let dir = out.join("sheets");
+    let tex = dir.join(format!("{name}.tex"));
+    if Command::new("pdflatex").arg("--version").output().is_err() {
+        rec.status = Status::Skipped;
+        rec.note = "pdflatex not found".into();
+        return rec;
+    }
+    eprintln!("bench: pages of the {name} sheet");
+    let made = std::fs::create_dir_all(&dir).and_then(|_| {
+        let status = Command::new(exe)
+            .args(["sheet", &format!("examples/{name}.scene"), "-o"])
+            .arg(&tex)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()?;
+        if !status.success() {
+            return Err(std::io::Error::other(format!("symdyn sheet: {status}")));
+        }
+        Command::new("pdflatex")
+            .args(["-interaction=nonstopmode", "-halt-on-error"])
+            .arg(format!("-output-directory={}", dir.display()))
+            .arg(&tex)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+    });
+    let log = std::fs::read_to_string(dir.join(format!("{name}.log"))).unwrap_or_default();
+    let pages = log
+        .split("Output written on ")
+        .nth(1)
+        .and_then(|rest| rest.split(" (").nth(1))
+        .and_then(|p| p.split_whitespace().next())
+        .and_then(|p| p.parse::<u64>().ok());
+    let overfull = log.matches("Overfull \\hbox").count();
+    match (made, pages) {
+        (Ok(_), Some(p)) => {
+            rec.terms = Some(p);
+            rec.note = format!("{p} pages, {overfull} overfull boxes");
+        }
+        (r, _) => {
+            rec.status = Status::Error;
+            rec.note = match r {
+                Err(e) => e.to_string(),
+                Ok(_) => "pdflatex wrote no PDF".into(),
+            };
+        }
+    }
+    rec
 }
 
 /// The peers' engines: (record method, `--engine`, `--trigsimp`).
@@ -450,7 +516,8 @@ fn scaling_points(records: &[Record]) -> (Vec<Point>, Vec<String>) {
         ("el", "Euler–Lagrange"),
         ("ne", "Newton–Euler"),
         ("ne-compact", "Newton–Euler, compact"),
-        ("el+ne+proof-body", "EL + NE + proof"),
+        ("el-compact", "compact (all quantities)"),
+        ("check-body", "check (body)"),
         ("sympy", "SymPy"),
         ("sympy+trigsimp", "SymPy + trigsimp"),
         ("symengine", "SymEngine"),
@@ -693,11 +760,6 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
                 }
                 // compile_tau traces its own recursion: it needs no expanded derivation.
                 Method::EvalTauProgram => timed_out.contains(&m),
-                Method::Proof => {
-                    timed_out.contains(&m)
-                        || timed_out.contains(&Method::Lagrange)
-                        || timed_out.contains(&Method::NewtonEuler)
-                }
                 _ => timed_out.contains(&m),
             };
             if blocked {
@@ -716,8 +778,39 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         }
     }
     let spawns = if args.quick { 10 } else { 30 };
-    records.push(runner.end_to_end("e2e-sheet", &["sheet"], spawns));
-    records.push(runner.end_to_end("e2e-check", &["check"], spawns));
+    records.push(runner.end_to_end(("ppp", 3), "e2e-sheet", &["sheet"], spawns, f64::INFINITY));
+    records.push(runner.end_to_end(("ppp", 3), "e2e-check", &["check"], spawns, f64::INFINITY));
+    // Every command and format, whole processes, on every example: printing can never hide.
+    let (runs, budget) = if args.quick { (3, 2.0) } else { (11, 10.0) };
+    for spec in &examples {
+        let RobotSpec::Example(name) = spec else {
+            continue;
+        };
+        let path = format!("examples/{name}.scene");
+        let dof = spec.robot().map(|r| r.dof()).unwrap_or(0);
+        for (method, cmd) in [
+            ("e2e-derive-text", vec!["derive", path.as_str()]),
+            (
+                "e2e-derive-latex",
+                vec!["derive", "--format", "latex", path.as_str()],
+            ),
+            (
+                "e2e-derive-json",
+                vec!["derive", "--format", "json", path.as_str()],
+            ),
+            (
+                "e2e-derive-compact",
+                vec!["derive", "--compact", path.as_str()],
+            ),
+            ("e2e-check", vec!["check", path.as_str()]),
+            ("e2e-sheet", vec!["sheet", path.as_str()]),
+        ] {
+            records.push(runner.end_to_end((name, dof), method, &cmd, runs, budget));
+        }
+        if !args.quick {
+            records.push(sheet_pages(&runner.exe, name, dof, &out));
+        }
+    }
     if args.peers {
         records.extend(run_peers(&args, limit, chains, &mut notes)?);
     }

@@ -3,7 +3,7 @@
 //! Warnings go to stderr; the output is the report.
 
 use super::CliError;
-use symdyn::dynamics::check::check;
+use symdyn::dynamics::check::{check_with, CheckOptions};
 use symdyn::dynamics::ne_compact::CompactProgram;
 use symdyn::dynamics::{Derivation, Frame, Robot};
 use symdyn::parse::{parse_scene, BUILTIN_PPP};
@@ -97,7 +97,9 @@ pub fn derive(
     })
 }
 
-/// `symdyn derive --compact`: the compact Newton–Euler program (body frames only).
+/// `symdyn derive --compact`: the compact program of the chosen method (Euler–Lagrange: `D`, the
+/// Christoffel symbols, `g` and the equations over named intermediates; Newton–Euler: the recursion's
+/// intermediates and `τ`, in body-fixed frames or the inertial frame).
 pub fn derive_compact(
     scene: Option<&str>,
     method: MethodArg,
@@ -105,40 +107,63 @@ pub fn derive_compact(
     format: Format,
     ascii: bool,
 ) -> Result<String, CliError> {
-    if method != MethodArg::NewtonEuler {
-        return Err(CliError::Input(
-            "error: --compact needs --method newton-euler".to_string(),
-        ));
-    }
-    if frame != FrameArg::Body {
-        return Err(CliError::Input(
-            "error: --compact works in body-fixed frames only (--frame body)".to_string(),
-        ));
-    }
     let (name, robot) = load_robot(scene)?;
-    let program = CompactProgram::derive(&robot)
-        .map_err(|e| CliError::Input(format!("error: {name}: {e}")))?;
+    let style = match format {
+        Format::Latex => Style::Latex,
+        _ if ascii => Style::Ascii,
+        _ => Style::Text,
+    };
+    let json = |doc: serde_json::Value| {
+        format!(
+            "{}\n",
+            serde_json::to_string_pretty(&doc).expect("JSON values serialise")
+        )
+    };
+    if method == MethodArg::Lagrange {
+        let der =
+            Derivation::new(robot).map_err(|e| CliError::Input(format!("error: {name}: {e}")))?;
+        let cd = der.compact();
+        let inputs = &der.robot().inputs;
+        return Ok(match format {
+            Format::Json => json(report::compact_lagrange_json(cd, &der.robot().name, inputs)),
+            _ => report::compact_lagrange(cd, inputs, style),
+        });
+    }
+    let program = match frame {
+        FrameArg::Body => CompactProgram::derive(&robot),
+        FrameArg::Inertial => CompactProgram::derive_inertial(&robot),
+    }
+    .map_err(|e| CliError::Input(format!("error: {name}: {e}")))?;
+    let frame_name = match frame {
+        FrameArg::Body => "body",
+        FrameArg::Inertial => "inertial",
+    };
     Ok(match format {
-        Format::Text => report::compact_program(
+        Format::Json => json(report::compact_json(
             &program,
+            &robot.name,
+            frame_name,
             &robot.inputs,
-            if ascii { Style::Ascii } else { Style::Text },
-        ),
-        Format::Latex => report::compact_program(&program, &robot.inputs, Style::Latex),
-        Format::Json => {
-            let doc = report::compact_json(&program, &robot.name, &robot.inputs);
-            format!(
-                "{}\n",
-                serde_json::to_string_pretty(&doc).expect("JSON values serialise")
-            )
-        }
+        )),
+        _ => report::compact_program(&program, &robot.inputs, style),
     })
 }
 
 /// `symdyn check`: exits non-zero when any claim fails.
-pub fn check_cmd(scene: Option<&str>) -> Result<String, CliError> {
+pub fn check_cmd(
+    scene: Option<&str>,
+    budget: Option<usize>,
+    seed: Option<u64>,
+) -> Result<String, CliError> {
     let der = load(scene)?;
-    let claims = check(&der);
+    let mut opts = CheckOptions::default();
+    if let Some(b) = budget {
+        opts.proof.budget = b;
+    }
+    if let Some(s) = seed {
+        opts.proof.seed = s;
+    }
+    let claims = check_with(&der, &opts);
     let text = report::check_report(&der.robot().name, &claims);
     if claims.iter().all(|c| c.holds) {
         Ok(text)

@@ -53,6 +53,13 @@ pub enum Command {
     Check {
         /// The scene file.
         scene: Option<String>,
+        /// Prove exactly (expanded canonical forms) while every equation expands within this many
+        /// terms (default 1000; 0 always proves at random points).
+        #[arg(long, value_name = "TERMS")]
+        budget: Option<usize>,
+        /// The seed of the random points of the randomized proof (default fixed, so runs repeat).
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
     },
     /// An interactive session on a scene (default: the built-in PPP arm); reads a script when stdin is
     /// not a terminal.
@@ -232,7 +239,11 @@ pub fn run(args: Args) -> Result<String, CliError> {
                 derive_cmds::derive(scene.as_deref(), method, frame, format, ascii)
             }
         }
-        Command::Check { scene } => derive_cmds::check_cmd(scene.as_deref()),
+        Command::Check {
+            scene,
+            budget,
+            seed,
+        } => derive_cmds::check_cmd(scene.as_deref(), budget, seed),
         Command::Repl { scene } => repl_cmd::repl(scene.as_deref()),
         Command::Sheet {
             scene,

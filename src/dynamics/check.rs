@@ -1,75 +1,233 @@
 //! The proofs `symdyn check` prints: one method against another, and the identities of the dynamics.
 //!
-//! Each claim is decided by the exact zero test of the normal form, never by sampling:
-//! - Euler–Lagrange and Newton–Euler (body-fixed and inertial) give identical `τ`;
+//! The claims, on the compact quantities of [`crate::dynamics::compact`]:
+//! - Euler–Lagrange (`D` by composite rigid bodies, `c_ijk` from `∂D/∂q`, `g = ∂P/∂q`) and Newton–Euler
+//!   (body-fixed and inertial) give identical `τ`;
 //! - `D(q)` is symmetric;
-//! - `Ḋ − 2C` is skew-symmetric (Spong et al., Property 7.1).
+//! - `Ḋ − 2C` is skew-symmetric (Spong et al., Property 7.1), tested as `Ḋ_kj = C_kj + C_jk`.
+//!
+//! How each claim is decided depends on size ([`CheckOptions::proof`]'s budget, the largest expanded
+//! `τ_k` in terms):
+//! - while every `τ_k` expands within the budget (probed on the compact Newton–Euler `τ`, whose
+//!   expansion is then the Newton–Euler side), the expanded derivations are compared by the exact
+//!   zero test of the canonical normal form, as a worked solution would: [`ClaimProof::Exact`];
+//! - beyond it, the compact quantities are compared by exact rational evaluation at random points
+//!   ([`crate::algebra::compact::identity`]), with the Schwartz–Zippel bound on the chance of a wrong
+//!   "equal" below `2^−128`: [`ClaimProof::Randomized`]. A difference found at a point is a definite
+//!   failure, with the point.
+//!
+//! The default budget (1000 terms) proves the small arms exactly (PPP, elbow, RPP, SCARA, the numeric
+//! PUMA 560, the generic chains up to three joints); the randomized proof takes the rest (the Stanford
+//! arm, the all-symbolic PUMA 560, longer chains), where expanding both methods costs more than
+//! SymEngine's whole unsimplified derivation. `symdyn check --budget N` raises it.
 
 use super::derivation::Derivation;
 use super::ne_symbolic::Frame;
 use crate::algebra::calculus::poly_dt;
-use crate::algebra::Rational;
+use crate::algebra::compact::identity::{prove, Outcome, Proof, ProofOptions, Witness};
+use crate::algebra::{Poly, Rational};
+use std::fmt;
+
+/// How a claim was decided.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ClaimProof {
+    /// Every identity of the claim by the exact zero test of the expanded normal form.
+    Exact,
+    /// Some identities by random rational points: `points` points, and a wrong "equal" anywhere in
+    /// the claim has probability at most `2^error_log2` (the union bound over its identities).
+    Randomized {
+        /// Random points evaluated.
+        points: u32,
+        /// `log2` of the bound on the probability of a wrong "equal".
+        error_log2: f64,
+    },
+    /// Some identity could be decided neither way (see the failures).
+    Undecided,
+}
+
+impl fmt::Display for ClaimProof {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ClaimProof::Exact => write!(f, "exact"),
+            ClaimProof::Randomized { points, error_log2 } => write!(
+                f,
+                "randomized: {points} random rational points, P(wrong) < 2^{}",
+                error_log2.ceil() as i64
+            ),
+            ClaimProof::Undecided => write!(f, "undecided"),
+        }
+    }
+}
 
 /// One proved (or refuted) claim.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Claim {
     /// What is claimed.
     pub statement: String,
-    /// Whether the zero test proved it.
+    /// Whether it was proved.
     pub holds: bool,
-    /// Where it fails (entries that are not zero), empty when it holds.
+    /// Where it fails (entries that differ, with the point that shows it), empty when it holds.
     pub failures: Vec<String>,
+    /// How it was decided.
+    pub proof: ClaimProof,
 }
 
-fn claim(statement: &str, failures: Vec<String>) -> Claim {
-    Claim {
-        statement: statement.to_string(),
-        holds: failures.is_empty(),
-        failures,
+/// What [`check_with`] proves and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckOptions {
+    /// The Newton–Euler frames compared with Euler–Lagrange.
+    pub frames: Vec<Frame>,
+    /// The proof's budget, confidence and seed.
+    pub proof: ProofOptions,
+}
+
+/// The default budget of the exact proof: the largest expanded `τ_k`, in terms.
+pub const EXACT_BUDGET: usize = 1000;
+
+impl Default for CheckOptions {
+    fn default() -> CheckOptions {
+        CheckOptions {
+            frames: vec![Frame::Body, Frame::Inertial],
+            proof: ProofOptions {
+                budget: EXACT_BUDGET,
+                ..ProofOptions::default()
+            },
+        }
     }
 }
 
 /// Proves the claims for a derivation: Euler–Lagrange against Newton–Euler in both frames, `D`
 /// symmetric, `Ḋ − 2C` skew-symmetric.
 pub fn check(der: &Derivation) -> Vec<Claim> {
-    check_frames(der, &[Frame::Body, Frame::Inertial])
+    check_with(der, &CheckOptions::default())
 }
 
-/// [`check`] with Newton–Euler derived (and compared) only in the given frames.
+/// [`check`] with Newton–Euler compared only in the given frames.
 pub fn check_frames(der: &Derivation, frames: &[Frame]) -> Vec<Claim> {
-    let mut claims: Vec<Claim> = frames.iter().map(|&f| agreement(der, f)).collect();
-    claims.extend(identities(der));
-    claims
+    check_with(
+        der,
+        &CheckOptions {
+            frames: frames.to_vec(),
+            ..CheckOptions::default()
+        },
+    )
 }
 
-/// The claim that Euler–Lagrange and Newton–Euler in `frame` give identical equations.
-pub fn agreement(der: &Derivation, frame: Frame) -> Claim {
-    let el = der.lagrange();
-    let n = der.robot().dof();
-    {
-        let ne = der.newton_euler(frame);
-        let bad: Vec<String> = (0..n)
-            // The normal form is canonical, so `a − b = 0` exactly when the two are equal term by term.
-            .filter(|&k| el.tau[k] != ne.tau[k])
-            .map(|k| format!("equation {}", k + 1))
-            .collect();
-        let what = format!(
-            "Euler–Lagrange and Newton–Euler ({}) give identical equations",
-            if frame == Frame::Body {
-                "body-fixed frames"
-            } else {
-                "inertial frame"
-            }
-        );
-        claim(&what, bad)
+/// One claim's identities `left = right`, with the label of each.
+struct Pending {
+    statement: String,
+    pairs: Vec<(Poly, Poly, String)>,
+}
+
+/// Proves the claims with the given options (see the [module docs](self)).
+pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
+    let cd = der.compact();
+    let mut probe = cd.arena.expander(opts.proof.budget);
+    let fits = opts.proof.budget > 0 && cd.tau_ne.iter().all(|t| probe.expand(t).is_ok());
+    if fits {
+        let mut claims: Vec<Claim> = opts.frames.iter().map(|&f| agreement(der, f)).collect();
+        claims.extend(identities(der));
+        return claims;
     }
+    randomized(der, opts)
 }
 
-/// The identities of the Euler–Lagrange quantities: `D(q)` symmetric, `Ḋ − 2C` skew-symmetric.
-pub fn identities(der: &Derivation) -> Vec<Claim> {
+/// The claims decided on the compact quantities by random points.
+fn randomized(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
+    let cd = der.compact();
+    let n = der.robot().dof();
+    let (mut arena, tau_inertial) = if opts.frames.contains(&Frame::Inertial) {
+        cd.with_inertial(der.robot(), der.joints())
+    } else {
+        (cd.arena.clone(), Vec::new())
+    };
+    let mut claims: Vec<Pending> = Vec::new();
+    for &frame in &opts.frames {
+        let ne = match frame {
+            Frame::Body => &cd.tau_ne,
+            Frame::Inertial => &tau_inertial,
+        };
+        claims.push(Pending {
+            statement: agreement_statement(frame),
+            pairs: (0..n)
+                .map(|k| {
+                    (
+                        cd.tau[k].clone(),
+                        ne[k].clone(),
+                        format!("equation {}", k + 1),
+                    )
+                })
+                .collect(),
+        });
+    }
+    let mut sym = Vec::new();
+    for k in 0..n {
+        for j in 0..k {
+            sym.push((
+                cd.d[k][j].clone(),
+                cd.d[j][k].clone(),
+                format!("d{}{} ≠ d{}{}", k + 1, j + 1, j + 1, k + 1),
+            ));
+        }
+    }
+    claims.push(Pending {
+        statement: "D(q) is symmetric".into(),
+        pairs: sym,
+    });
+    // N = Ḋ − 2C is skew-symmetric when N_kj + N_jk = 0 for k ≥ j: with D symmetric (the claim
+    // above), Ḋ_kj = C_kj + C_jk.
+    let mut skew = Vec::new();
+    for k in 0..n {
+        for j in 0..=k {
+            let d_dot = arena.dt(&cd.d[k][j]);
+            let c_sum = cd.c[k][j].add(&cd.c[j][k]);
+            skew.push((
+                d_dot,
+                c_sum,
+                format!("N{}{} + N{}{} ≠ 0", k + 1, j + 1, j + 1, k + 1),
+            ));
+        }
+    }
+    claims.push(Pending {
+        statement: "Ḋ − 2C is skew-symmetric".into(),
+        pairs: skew,
+    });
+    let all: Vec<(&Poly, &Poly)> = claims
+        .iter()
+        .flat_map(|c| c.pairs.iter().map(|(a, b, _)| (a, b)))
+        .collect();
+    let forced = ProofOptions {
+        budget: 0,
+        ..opts.proof
+    };
+    let outcomes = prove(&arena, &all, &forced);
+    let mut it = outcomes.into_iter();
+    claims
+        .into_iter()
+        .map(|c| {
+            let outs: Vec<Outcome> = it.by_ref().take(c.pairs.len()).collect();
+            decide(c, outs)
+        })
+        .collect()
+}
+
+/// The exact claim that the expanded Euler–Lagrange and Newton–Euler (in `frame`) equations are
+/// identical: the normal form is canonical, so they are equal exactly when they are equal term by term.
+fn agreement(der: &Derivation, frame: Frame) -> Claim {
+    let el = der.lagrange();
+    let ne = der.newton_euler(frame);
+    let bad: Vec<String> = (0..der.robot().dof())
+        .filter(|&k| el.tau[k] != ne.tau[k])
+        .map(|k| format!("equation {}", k + 1))
+        .collect();
+    exact(agreement_statement(frame), bad)
+}
+
+/// The exact identities of the expanded Euler–Lagrange quantities: `D(q)` symmetric, `Ḋ − 2C`
+/// skew-symmetric.
+fn identities(der: &Derivation) -> Vec<Claim> {
     let el = der.lagrange();
     let n = der.robot().dof();
-    let mut claims = Vec::new();
     let mut asym = Vec::new();
     for k in 0..n {
         for j in 0..k {
@@ -78,7 +236,6 @@ pub fn identities(der: &Derivation) -> Vec<Claim> {
             }
         }
     }
-    claims.push(claim("D(q) is symmetric", asym));
     // N = Ḋ − 2C is skew-symmetric when N_kj + N_jk = 0 for k ≥ j, that is
     // Ḋ_kj + Ḋ_jk = 2 (C_kj + C_jk). Where d_kj and d_jk are the same polynomial (always, when D is
     // symmetric) the left side is 2 Ḋ_kj, so the test is Ḋ_kj = C_kj + C_jk: one time derivative per
@@ -98,6 +255,85 @@ pub fn identities(der: &Derivation) -> Vec<Claim> {
             }
         }
     }
-    claims.push(claim("Ḋ − 2C is skew-symmetric", skew));
-    claims
+    vec![
+        exact("D(q) is symmetric".into(), asym),
+        exact("Ḋ − 2C is skew-symmetric".into(), skew),
+    ]
+}
+
+fn exact(statement: String, failures: Vec<String>) -> Claim {
+    Claim {
+        statement,
+        holds: failures.is_empty(),
+        failures,
+        proof: ClaimProof::Exact,
+    }
+}
+
+fn agreement_statement(frame: Frame) -> String {
+    format!(
+        "Euler–Lagrange and Newton–Euler ({}) give identical equations",
+        match frame {
+            Frame::Body => "body-fixed frames",
+            Frame::Inertial => "inertial frame",
+        }
+    )
+}
+
+/// A claim from the outcomes of its identities.
+fn decide(c: Pending, outs: Vec<Outcome>) -> Claim {
+    let mut failures = Vec::new();
+    let mut points = 0;
+    let mut error = 0.0f64; // Σ 2^e_i, scaled by 2^200 to stay in range
+    let mut randomized = false;
+    let mut undecided = false;
+    for ((_, _, label), o) in c.pairs.iter().zip(&outs) {
+        match o {
+            Outcome::Equal(Proof::Exact) => {}
+            Outcome::Equal(p @ Proof::Randomized { points: k, .. }) => {
+                randomized = true;
+                points = points.max(*k);
+                error += (p.error_log2() + 200.0).exp2();
+            }
+            Outcome::NotEqual(None) => failures.push(label.clone()),
+            Outcome::NotEqual(Some(w)) => failures.push(format!("{label}: {}", witness_text(w))),
+            Outcome::Undecided(why) => {
+                undecided = true;
+                failures.push(format!("{label}: undecided ({why})"));
+            }
+        }
+    }
+    let proof = if undecided {
+        ClaimProof::Undecided
+    } else if randomized {
+        ClaimProof::Randomized {
+            points,
+            error_log2: error.log2() - 200.0,
+        }
+    } else {
+        ClaimProof::Exact
+    };
+    Claim {
+        statement: c.statement,
+        holds: failures.is_empty(),
+        failures,
+        proof,
+    }
+}
+
+/// `at tan(q1/2) = 3, m1 = 5, …: 7/2 ≠ 9/4`.
+pub fn witness_text(w: &Witness) -> String {
+    let values: Vec<String> = w
+        .values
+        .iter()
+        .zip(&w.angles)
+        .map(|((name, v), &angle)| {
+            if angle {
+                format!("tan({name}/2) = {v}")
+            } else {
+                format!("{name} = {v}")
+            }
+        })
+        .collect();
+    format!("at {}: {} ≠ {}", values.join(", "), w.left, w.right)
 }

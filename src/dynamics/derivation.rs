@@ -1,8 +1,9 @@
 //! One robot's derivation: the kinematics, Euler–Lagrange and both Newton–Euler variants, each computed
 //! on first use and kept, so no caller has to know an order of calls.
 
+use super::compact::CompactDynamics;
 use super::facts::{Fact, Warning};
-use super::kinematics::Kinematics;
+use super::kinematics::{joint_frame, JointFrame, Kinematics};
 use super::lagrange::Lagrange;
 use super::model::{JointKind, ModelError, Robot};
 use super::ne_symbolic::{self, Frame};
@@ -14,10 +15,13 @@ use std::sync::OnceLock;
 #[derive(Debug)]
 pub struct Derivation {
     robot: Robot,
-    kin: Kinematics,
+    joints: Vec<JointFrame>,
+    rotates: Vec<bool>,
+    kin: OnceLock<Kinematics>,
     lagrange: OnceLock<Lagrange>,
     ne_body: OnceLock<NewtonEuler<Poly>>,
     ne_inertial: OnceLock<NewtonEuler<Poly>>,
+    compact: OnceLock<CompactDynamics>,
 }
 
 /// One equation of motion: `lhs = input`.
@@ -30,16 +34,27 @@ pub struct Equation {
 }
 
 impl Derivation {
-    /// Validates the robot and computes its kinematics.
+    /// Validates the robot and computes its local joint frames (everything else on first use).
     pub fn new(robot: Robot) -> Result<Derivation, ModelError> {
         robot.validate()?;
-        let kin = Kinematics::new(&robot);
+        let joints: Vec<JointFrame> = (1..=robot.dof()).map(|i| joint_frame(&robot, i)).collect();
+        let mut any = false;
+        let rotates = joints
+            .iter()
+            .map(|j| {
+                any |= j.kind == JointKind::Revolute;
+                any
+            })
+            .collect();
         Ok(Derivation {
             robot,
-            kin,
+            joints,
+            rotates,
+            kin: OnceLock::new(),
             lagrange: OnceLock::new(),
             ne_body: OnceLock::new(),
             ne_inertial: OnceLock::new(),
+            compact: OnceLock::new(),
         })
     }
 
@@ -48,15 +63,26 @@ impl Derivation {
         &self.robot
     }
 
-    /// The kinematics.
+    /// The expanded kinematics (transforms, Jacobians), computed on first use: they swell with the
+    /// number of joints, and the compact quantities do not need them.
     pub fn kinematics(&self) -> &Kinematics {
-        &self.kin
+        self.kin.get_or_init(|| Kinematics::new(&self.robot))
+    }
+
+    /// The local frame of each joint (index `i − 1`).
+    pub fn joints(&self) -> &[JointFrame] {
+        &self.joints
+    }
+
+    /// Whether link `i` (index `i − 1`) can rotate: some joint up to `i` is revolute.
+    pub fn rotates(&self) -> &[bool] {
+        &self.rotates
     }
 
     /// The Euler–Lagrange quantities.
     pub fn lagrange(&self) -> &Lagrange {
         self.lagrange
-            .get_or_init(|| Lagrange::derive(&self.robot, &self.kin))
+            .get_or_init(|| Lagrange::derive(&self.robot, self.kinematics()))
     }
 
     /// The Newton–Euler quantities in `frame`.
@@ -65,7 +91,15 @@ impl Derivation {
             Frame::Body => &self.ne_body,
             Frame::Inertial => &self.ne_inertial,
         };
-        cell.get_or_init(|| ne_symbolic::derive(&self.robot, &self.kin, frame))
+        cell.get_or_init(|| ne_symbolic::derive(&self.robot, self.kinematics(), frame))
+    }
+
+    /// Every quantity in compact form (named intermediates): `D` by composite rigid bodies, the
+    /// Christoffel symbols, `C`, `P`, `g`, `τ` by Euler–Lagrange and by Newton–Euler. Small at any size;
+    /// expand it ([`crate::algebra::compact::Expander`]) for the canonical forms.
+    pub fn compact(&self) -> &CompactDynamics {
+        self.compact
+            .get_or_init(|| CompactDynamics::derive(&self.robot, &self.joints))
     }
 
     /// The structural facts of this robot (known before deriving, plus `D(q)` constant once derived by
@@ -81,7 +115,7 @@ impl Derivation {
             facts.push(Fact::PrismaticOnly);
         } else {
             let still: Vec<usize> = (0..self.robot.dof())
-                .filter(|&i| !self.kin.rotates[i])
+                .filter(|&i| !self.rotates[i])
                 .map(|i| i + 1)
                 .collect();
             if !still.is_empty() {

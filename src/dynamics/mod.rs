@@ -5,12 +5,14 @@
 //! - [`kinematics`]: transforms, centres of mass, Jacobians.
 //! - [`lagrange`]: `D`, `c_ijk`, `C`, `P`, `g`, the equations.
 //! - [`newton_euler`] (generic over the scalar) and [`ne_symbolic`] (its exact inputs, body or inertial).
-//! - [`ne_compact`]: the compact Newton–Euler, a program of small named intermediates.
+//! - [`ne_compact`]: the compact Newton–Euler, a program of small named intermediates;
+//!   [`compact`]: every quantity in compact form (`D` by composite rigid bodies, `c_ijk`, `g`).
 //! - [`facts`]: what is structurally zero; [`plausibility`]: what is physically odd (warnings);
 //!   [`derivation`]: one robot's results, computed on demand.
 //! - [`check`]: the proofs; [`numeric`]: an independent `f64` inverse dynamics for cross-checks.
 
 pub mod check;
+pub mod compact;
 pub mod derivation;
 pub mod facts;
 pub mod inertia;

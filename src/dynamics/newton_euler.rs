@@ -128,7 +128,8 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
     let (mut w_prev, mut al_prev, mut ae_prev) =
         (Vec3::<S>::zero(), Vec3::<S>::zero(), Vec3::<S>::zero());
     let two = S::from_rational(&crate::algebra::Rational::int(2));
-    for st in steps {
+    for (idx, st) in steps.iter().enumerate() {
+        let i = idx + 1;
         let w0 = st.rot_in.mul_vec(&w_prev);
         let al0 = st.rot_in.mul_vec(&al_prev);
         let ae0 = st.rot_in.mul_vec(&ae_prev);
@@ -146,6 +147,8 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
         } else {
             (w0, al0)
         };
+        let w = S::label(w, &|| format!("w{i}"));
+        let al = S::label(al, &|| format!("wd{i}"));
         let accel = |r: &Vec3<S>| {
             let mut a = a_j.add(&al.cross(r)).add(&w.cross(&w.cross(r)));
             if !st.revolute {
@@ -156,8 +159,8 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             a
         };
         let r_jc = st.r_joint_origin.add(&st.r_origin_com);
-        a_c.push(accel(&r_jc));
-        let ae = accel(&st.r_joint_origin);
+        a_c.push(S::label(accel(&r_jc), &|| format!("ac{i}")));
+        let ae = S::label(accel(&st.r_joint_origin), &|| format!("ae{i}"));
         a_e.push(ae.clone());
         g.push(st.gravity.clone());
         w_prev = w.clone();
@@ -186,7 +189,7 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             None => (Vec3::zero(), Vec3::zero(), Vec3::zero()),
         };
         let own = a_c[i].sub(&g[i]).scale(&st.mass);
-        let fi = f_here.add(&own);
+        let fi = S::label(f_here.add(&own), &|| format!("f{}", i + 1));
         if first_revolute.is_some_and(|r| i >= r) {
             let r_jc = st.r_joint_origin.add(&st.r_origin_com);
             let mut ni = match moment {
@@ -200,7 +203,7 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             if let Some((i_alpha, gyro)) = euler(i, &alpha[i], &omega[i]) {
                 ni = ni.add(&i_alpha).add(&gyro);
             }
-            moments[i] = Some(ni);
+            moments[i] = Some(S::label(ni, &|| format!("n{}", i + 1)));
         }
         tau[i] = if st.revolute {
             moments[i]

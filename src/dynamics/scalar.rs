@@ -34,6 +34,13 @@ pub trait Scalar: Clone + std::fmt::Debug {
     fn mul_sub(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
         a.mul(b).sub(&c.mul(d))
     }
+    /// A checkpoint of a recursion: the book quantity `v` is complete and called `hint()` (`w3` for
+    /// `ω_3`). The value is returned unchanged, except by a scalar that names its values
+    /// ([`crate::dynamics::compact::scalar::Named`]), which names the components `w3_1 … w3_3`.
+    fn label(v: super::vec3::Vec3<Self>, hint: &dyn Fn() -> String) -> super::vec3::Vec3<Self> {
+        let _ = hint;
+        v
+    }
 }
 
 impl Scalar for Poly {

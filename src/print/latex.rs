@@ -104,7 +104,7 @@ fn factors(list: &[(Expr, i64)]) -> Vec<String> {
 
 /// `base^{exp}` for a positive exponent; functions as `\sin^{2} q_{2}`. `guarded`: a non-function
 /// factor follows, so a function's argument needs its parentheses.
-fn factor(base: &Expr, exp: i64, guarded: bool) -> String {
+pub(super) fn factor(base: &Expr, exp: i64, guarded: bool) -> String {
     if let Kind::Fun(f, arg) = base.kind() {
         return function(*f, arg, exp, guarded);
     }

@@ -31,9 +31,11 @@
 //!
 //! Symbol names are described in [`names`].
 
+pub mod equation;
 mod latex;
 pub mod layout;
 pub mod names;
+pub mod poly;
 mod text;
 
 use crate::algebra::{Expr, Kind, Rational};
@@ -113,14 +115,20 @@ pub fn vector_to_string(v: &[Expr], style: Style) -> String {
 /// Joins signed bodies into a sum: `a + b - c`; a `nested` sum (in parentheses or a function
 /// argument) is compact, `a+b-c`, unless a body contains a space. No pieces print as `0`.
 fn join_sum(pieces: &[Piece], bodies: &[String], nested: bool) -> String {
-    if pieces.is_empty() {
+    let signs: Vec<bool> = pieces.iter().map(|p| p.negative).collect();
+    join_signs(&signs, bodies, nested)
+}
+
+/// [`join_sum`] from the signs alone.
+fn join_signs(negative: &[bool], bodies: &[String], nested: bool) -> String {
+    if negative.is_empty() {
         return "0".to_string();
     }
     let spaced = !nested || bodies.iter().any(|b| b.contains(' '));
     let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
-    let mut out = String::new();
-    for (i, (piece, body)) in pieces.iter().zip(bodies).enumerate() {
-        match (i, piece.negative) {
+    let mut out = String::with_capacity(bodies.iter().map(|b| b.len() + 3).sum());
+    for (i, (negative, body)) in negative.iter().zip(bodies).enumerate() {
+        match (i, *negative) {
             (0, false) => {}
             (0, true) => out.push('-'),
             (_, false) => out.push_str(plus),

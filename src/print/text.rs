@@ -87,7 +87,7 @@ impl Printer {
     }
 
     /// `base^exp` for a positive exponent: `lc2^2`, `sin(q2)^2`, `(a-b)^2`.
-    fn factor(&self, base: &Expr, exp: i64) -> String {
+    pub(super) fn factor(&self, base: &Expr, exp: i64) -> String {
         let b = self.base(base);
         if exp == 1 {
             b

@@ -13,23 +13,49 @@
 //! `mass_matrix`, `coriolis`, `christoffel`, `gravity` and `potential` come from Euler–Lagrange;
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
-use super::{lhs_terms, tau, Method};
-use crate::algebra::tidy::tidy;
+use super::{lhs_string, quantity_string, tau, Method, JSON_TIDY_BUDGET};
 use crate::algebra::Poly;
 use crate::dynamics::Derivation;
-use crate::print::{self, Style};
+use crate::print::poly::polys_to_strings;
+use crate::print::Style;
 use serde_json::{json as j, Value};
 
-fn ascii(p: &Poly) -> Value {
-    Value::String(print::to_string(&tidy(&p.to_expr()), Style::Ascii))
+/// The quantities of a document printed in ASCII, the large ones by one shared polynomial printer.
+struct Quantities {
+    big: std::collections::HashMap<*const Poly, String>,
 }
 
-fn matrix(m: &[Vec<Poly>]) -> Value {
-    Value::Array(
-        m.iter()
-            .map(|r| Value::Array(r.iter().map(ascii).collect()))
-            .collect(),
-    )
+impl Quantities {
+    fn new(polys: &[&Poly]) -> Quantities {
+        let large: Vec<&Poly> = polys
+            .iter()
+            .copied()
+            .filter(|p| p.len() > JSON_TIDY_BUDGET)
+            .collect();
+        let strings = polys_to_strings(&large, Style::Ascii);
+        Quantities {
+            big: large
+                .into_iter()
+                .map(|p| p as *const Poly)
+                .zip(strings)
+                .collect(),
+        }
+    }
+
+    fn ascii(&self, p: &Poly) -> Value {
+        Value::String(match self.big.get(&(p as *const Poly)) {
+            Some(s) => s.clone(),
+            None => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
+        })
+    }
+
+    fn matrix(&self, m: &[Vec<Poly>]) -> Value {
+        Value::Array(
+            m.iter()
+                .map(|r| Value::Array(r.iter().map(|p| self.ascii(p)).collect()))
+                .collect(),
+        )
+    }
 }
 
 /// The JSON document of a derivation.
@@ -39,19 +65,24 @@ pub fn json(der: &Derivation, method: Method) -> Value {
         Method::Lagrange => ("lagrange", Value::Null),
         Method::NewtonEuler(f) => ("newton-euler", Value::String(f.name().into())),
     };
-    let tau = tau(der, method);
-    let equations: Vec<Value> = tau
+    let lhs: Vec<String> = tau(der, method)
+        .iter()
+        .map(|t| lhs_string(t, Style::Ascii))
+        .collect();
+    let equations: Vec<Value> = lhs
         .iter()
         .zip(&der.robot().inputs)
-        .map(|(t, u)| {
-            let lhs = print::sum_to_string(&lhs_terms(t), Style::Ascii);
-            j!({ "lhs": lhs, "rhs": u })
-        })
+        .map(|(l, u)| j!({ "lhs": l, "rhs": u }))
         .collect();
-    let christoffel: Vec<Value> = el
-        .nonzero_christoffel()
-        .into_iter()
-        .map(|(i, jj, k, c)| j!({ "i": i, "j": jj, "k": k, "value": ascii(c) }))
+    let nonzero = el.nonzero_christoffel();
+    let mut all: Vec<&Poly> = el.d.iter().chain(&el.c).flatten().collect();
+    all.extend(nonzero.iter().map(|(_, _, _, c)| *c));
+    all.extend(el.g.iter());
+    all.push(&el.p);
+    let q = Quantities::new(&all);
+    let christoffel: Vec<Value> = nonzero
+        .iter()
+        .map(|(i, jj, k, c)| j!({ "i": i, "j": jj, "k": k, "value": q.ascii(c) }))
         .collect();
     j!({
         "robot": der.robot().name,
@@ -59,13 +90,13 @@ pub fn json(der: &Derivation, method: Method) -> Value {
         "frame": frame,
         "coordinates": der.coordinates().iter().map(|s| s.ascii_name()).collect::<Vec<_>>(),
         "inputs": der.robot().inputs,
-        "mass_matrix": matrix(&el.d),
-        "coriolis": matrix(&el.c),
+        "mass_matrix": q.matrix(&el.d),
+        "coriolis": q.matrix(&el.c),
         "christoffel": christoffel,
-        "gravity": el.g.iter().map(ascii).collect::<Vec<_>>(),
-        "potential": ascii(&el.p),
+        "gravity": el.g.iter().map(|p| q.ascii(p)).collect::<Vec<_>>(),
+        "potential": q.ascii(&el.p),
         "equations": equations,
-        "tau": tau.iter().map(|t| print::sum_to_string(&lhs_terms(t), Style::Ascii)).collect::<Vec<_>>(),
+        "tau": lhs,
         "facts": der.facts().iter().map(|f| f.to_string()).collect::<Vec<_>>(),
         "warnings": der.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
     })

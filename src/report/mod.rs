@@ -4,7 +4,10 @@
 mod compact;
 mod json;
 
-pub use compact::{program as compact_program, program_json as compact_json};
+pub use compact::{
+    lagrange_json as compact_lagrange_json, lagrange_program as compact_lagrange,
+    program as compact_program, program_json as compact_json,
+};
 pub use json::json;
 
 use crate::algebra::tidy::equation_terms;
@@ -36,6 +39,36 @@ pub fn lhs_terms(tau_k: &Poly) -> Vec<Expr> {
     equation_terms(&tau_k.to_expr())
 }
 
+/// The number of terms beyond which an expression is printed straight from its normal form (grouped
+/// by accelerations, velocities and leading parameter, angle sums left expanded) rather than tidied
+/// into the house style: tidying costs far more than deriving at that size and reads no better.
+pub const DISPLAY_BUDGET: usize = 200;
+
+/// Equation `k`'s left side printed in `style`: in house style ([`lhs_terms`]) while it has at most
+/// [`DISPLAY_BUDGET`] terms, straight from the normal form beyond ([`print::equation`]).
+pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
+    if tau_k.len() > DISPLAY_BUDGET {
+        if let Some(shown) = print::equation::pieces(tau_k, style) {
+            return print::equation::join(&shown);
+        }
+    }
+    print::sum_to_string(&lhs_terms(tau_k), style)
+}
+
+/// The number of terms beyond which a quantity of a JSON document (`D`, `C`, `c_ijk`, `g`, `P`) is
+/// given as its normal form rather than tidied: a document is read by programs, and tidying its many
+/// medium-sized entries would cost more than deriving them.
+pub const JSON_TIDY_BUDGET: usize = 16;
+
+/// An expression printed in `style`: simplified into the house style while it has at most `budget`
+/// terms, its normal form as it stands beyond.
+pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
+    if p.len() > budget {
+        return print::poly::poly_to_string(p, style);
+    }
+    print::to_string(&crate::algebra::tidy::tidy(&p.to_expr()), style)
+}
+
 /// The equations of motion, one per line: `(m1+m2+m3) q̈1 + (m1+m2+m3) g = u1`. In LaTeX, an
 /// `align*` environment whose lines stay within [`LINE_WIDTH`](crate::print::layout::LINE_WIDTH),
 /// long equations broken across rows ([`Layout::equations`]).
@@ -58,7 +91,7 @@ pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
         .zip(&der.robot().inputs)
         .map(|(t, u)| {
             let input = print::to_string(&Expr::sym(Symbol::new(u)), style);
-            (print::sum_to_string(&lhs_terms(t), style), input)
+            (lhs_string(t, style), input)
         })
         .collect();
     equalities(&lines, style)
@@ -78,12 +111,12 @@ pub fn equalities(lines: &[(String, String)], style: Style) -> String {
     }
 }
 
-/// The proof report: one line per claim, `✓` or `✗`, with the failing entries.
+/// The proof report: one line per claim, `proved [how]` or `FAILED [how]`, with the failing entries.
 pub fn check_report(robot_name: &str, claims: &[Claim]) -> String {
     let mut out = format!("{robot_name}\n");
     for c in claims {
         let mark = if c.holds { "proved" } else { "FAILED" };
-        out.push_str(&format!("  {mark}: {}\n", c.statement));
+        out.push_str(&format!("  {mark} [{}]: {}\n", c.proof, c.statement));
         for f in &c.failures {
             out.push_str(&format!("      {f}\n"));
         }

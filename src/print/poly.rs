@@ -1,0 +1,355 @@
+//! Printing a polynomial of the normal form without building its canonical expression.
+//!
+//! [`poly_to_string`] prints exactly what `to_string(&p.to_expr(), style)` prints, at a fraction of the
+//! cost: instead of building the canonical sum (every term a canonical product, the sum a sorted map
+//! of expressions), it ranks the polynomial's few distinct atoms once by the canonical order of their
+//! bases (`Expr`'s `cmp`), sorts each monomial's factors by rank and the terms by the canonical order
+//! of products (factor lists compared base by base, the higher power first for an equal base, the
+//! shorter list first), and lays out the [`Piece`]s the printers already print. Polynomials with
+//! atoms outside the plain class (opaque expressions, sines of constant angles) take the canonical
+//! route, so the result is always the same text.
+
+use super::{latex, text, Piece, Product, Style};
+use crate::algebra::atom::{self, AtomId, Class};
+use crate::algebra::fast_hash::FxHashMap;
+use crate::algebra::{Expr, Poly, Rational};
+use std::cmp::Ordering;
+
+/// The atoms of some polynomials, ranked by the canonical order of their bases.
+pub struct Ranks {
+    /// Atom id → rank.
+    of: FxHashMap<AtomId, u32>,
+    /// The base of each rank.
+    bases: Vec<Expr>,
+    /// The atom of each rank.
+    atoms: Vec<AtomId>,
+}
+
+/// Whether an atom prints as a plain base of a canonical product: a symbol, π, a surd, or `sin`/`cos`
+/// of a symbol.
+fn plain(id: AtomId) -> bool {
+    match atom::class(id) {
+        Class::Param | Class::Coord | Class::Pi | Class::Sqrt => true,
+        // Not the base angle x/L of a fractional multiple, which takes the canonical route.
+        Class::Sin | Class::Cos => matches!(atom::lookup(id), atom::Atom::Sym(_)),
+        Class::Other | Class::CosPi | Class::SinPi => false,
+    }
+}
+
+impl Ranks {
+    /// Ranks for the atoms of `polys`, or `None` if one of them is not plain.
+    pub fn of<'a, I: IntoIterator<Item = &'a Poly>>(polys: I) -> Option<Ranks> {
+        let mut ids: Vec<AtomId> = Vec::new();
+        for p in polys {
+            for (m, _) in p.terms() {
+                ids.extend(m.factors().iter().map(|&(id, _)| id));
+            }
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        if !ids.iter().all(|&id| plain(id)) {
+            return None;
+        }
+        let mut bases: Vec<(AtomId, Expr)> =
+            ids.into_iter().map(|id| (id, atom::to_expr(id))).collect();
+        bases.sort_by(|a, b| a.1.cmp(&b.1));
+        Some(Ranks {
+            of: bases
+                .iter()
+                .enumerate()
+                .map(|(r, (id, _))| (*id, r as u32))
+                .collect(),
+            atoms: bases.iter().map(|(id, _)| *id).collect(),
+            bases: bases.into_iter().map(|(_, e)| e).collect(),
+        })
+    }
+
+    /// The rank of an atom of the ranked polynomials.
+    pub fn rank(&self, id: AtomId) -> u32 {
+        self.of[&id]
+    }
+
+    /// The atom of a rank.
+    pub fn atom(&self, rank: u32) -> AtomId {
+        self.atoms[rank as usize]
+    }
+
+    /// The base expression of a rank.
+    pub fn base(&self, rank: u32) -> &Expr {
+        &self.bases[rank as usize]
+    }
+
+    /// The pieces of `p` in the canonical order: terms as a canonical sum stores them, the constant
+    /// last. `p`'s atoms must have been ranked.
+    #[cfg(test)]
+    fn pieces(&self, p: &Poly) -> Vec<Piece> {
+        let mut terms: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(p.len());
+        let mut constant = None;
+        for (m, c) in p.terms() {
+            if m.factors().is_empty() {
+                constant = Some(c);
+                continue;
+            }
+            let mut key: Vec<(u32, i32)> = m
+                .factors()
+                .iter()
+                .map(|&(id, e)| (self.of[&id], e))
+                .collect();
+            key.sort_unstable_by_key(|&(r, _)| r);
+            terms.push((key, c));
+        }
+        terms.sort_by(|a, b| cmp_factor_lists(&a.0, &b.0));
+        let mut out: Vec<Piece> = terms
+            .into_iter()
+            .map(|(key, c)| {
+                let factors: Vec<(Expr, i64)> = key
+                    .iter()
+                    .map(|&(r, e)| (self.bases[r as usize].clone(), e as i64))
+                    .collect();
+                Piece {
+                    negative: c.is_negative(),
+                    product: Product::new(&c.abs(), &factors),
+                }
+            })
+            .collect();
+        if let Some(c) = constant {
+            out.push(Piece {
+                negative: c.is_negative(),
+                product: Product::new(&c.abs(), &[]),
+            });
+        }
+        out
+    }
+}
+
+/// Factor lists in the canonical order of products: base by base (by rank), for an equal base the
+/// higher power first, then the shorter list first.
+pub(super) fn cmp_factor_lists(a: &[(u32, i32)], b: &[(u32, i32)]) -> Ordering {
+    for (x, y) in a.iter().zip(b) {
+        let o = x.0.cmp(&y.0).then_with(|| y.1.cmp(&x.1));
+        if o != Ordering::Equal {
+            return o;
+        }
+    }
+    a.len().cmp(&b.len())
+}
+
+/// Renders products of ranked atoms in one style, each `base^e` rendered once: the text the product
+/// printers of [`super::text`] and [`super::latex`] give, for products without negative powers
+/// (others go through those printers).
+pub struct Renderer<'a> {
+    ranks: &'a Ranks,
+    style: Style,
+    /// `(rank, exponent, guarded)` → the factor's text.
+    cache: FxHashMap<(u32, i32, bool), String>,
+}
+
+impl<'a> Renderer<'a> {
+    /// A renderer of products of `ranks`' atoms in `style`.
+    pub fn new(ranks: &'a Ranks, style: Style) -> Renderer<'a> {
+        Renderer {
+            ranks,
+            style,
+            cache: FxHashMap::default(),
+        }
+    }
+
+    /// The ranks.
+    pub fn ranks(&self) -> &'a Ranks {
+        self.ranks
+    }
+
+    fn factor(&mut self, rank: u32, exp: i32, guarded: bool) -> &str {
+        let style = self.style;
+        let base = self.ranks.base(rank);
+        let guarded = guarded && style == Style::Latex;
+        self.cache
+            .entry((rank, exp, guarded))
+            .or_insert_with(|| match style {
+                Style::Latex => latex::factor(base, exp as i64, guarded),
+                _ => text::Printer::new(style).factor(base, exp as i64),
+            })
+    }
+
+    /// The magnitude of `|c| · Π factors` (factors sorted by rank): `2 m2 lc2^2`, `1/2 m1`,
+    /// `\\frac{1}{2} m_{1}`.
+    pub fn product(&mut self, c: &Rational, factors: &[(u32, i32)]) -> String {
+        if factors.iter().any(|&(_, e)| e < 0) {
+            let list: Vec<(Expr, i64)> = factors
+                .iter()
+                .map(|&(r, e)| (self.ranks.base(r).clone(), e as i64))
+                .collect();
+            let piece = Piece {
+                negative: false,
+                product: Product::new(&c.abs(), &list),
+            };
+            return sum_string(std::slice::from_ref(&piece), self.style);
+        }
+        let latex = self.style == Style::Latex;
+        let sep = if self.style == Style::Ascii { '*' } else { ' ' };
+        let (numer, denom) = match c.as_small() {
+            Some((n, d)) => (n.unsigned_abs().to_string(), d.to_string()),
+            None => {
+                let n = c.numer();
+                let n = if n < num_bigint::BigInt::from(0) {
+                    -n
+                } else {
+                    n
+                };
+                (n.to_string(), c.denom().to_string())
+            }
+        };
+        // Leading surds and powers of π join the number.
+        let numeric = factors
+            .iter()
+            .take_while(|&&(r, _)| {
+                matches!(atom::class(self.ranks.atom(r)), Class::Sqrt | Class::Pi)
+            })
+            .count();
+        let mut number = String::new();
+        if numer != "1" {
+            number.push_str(&numer);
+        }
+        for &(r, e) in &factors[..numeric] {
+            if !number.is_empty() {
+                number.push(sep);
+            }
+            let f = self.factor(r, e, false).to_string();
+            number.push_str(&f);
+        }
+        let mut out = String::with_capacity(16 + 8 * factors.len());
+        if denom != "1" {
+            let n = if number.is_empty() { "1" } else { &number };
+            if latex {
+                out.push_str("\\frac{");
+                out.push_str(n);
+                out.push_str("}{");
+                out.push_str(&denom);
+                out.push('}');
+            } else {
+                out.push_str(n);
+                out.push('/');
+                out.push_str(&denom);
+            }
+        } else {
+            out.push_str(&number);
+        }
+        let rest = &factors[numeric..];
+        for (i, &(r, e)) in rest.iter().enumerate() {
+            let guarded = latex
+                && rest.get(i + 1).is_some_and(|&(next, _)| {
+                    !matches!(atom::class(self.ranks.atom(next)), Class::Sin | Class::Cos)
+                });
+            if !out.is_empty() {
+                out.push(sep);
+            }
+            let f: &str = self.factor(r, e, guarded);
+            // `out` and the cache are distinct borrows of self only through `factor`.
+            let f = f.to_owned();
+            out.push_str(&f);
+        }
+        if out.is_empty() {
+            out.push('1');
+        }
+        out
+    }
+
+    /// The canonical sum of `p`'s terms, printed (`nested`: compact unless a term has a space).
+    pub fn sum(&mut self, p: &Poly, nested: bool) -> String {
+        let mut terms: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(p.len());
+        let mut constant = None;
+        for (m, c) in p.terms() {
+            if m.factors().is_empty() {
+                constant = Some(c);
+                continue;
+            }
+            let mut key: Vec<(u32, i32)> = m
+                .factors()
+                .iter()
+                .map(|&(id, e)| (self.ranks.rank(id), e))
+                .collect();
+            key.sort_unstable_by_key(|&(r, _)| r);
+            terms.push((key, c));
+        }
+        terms.sort_by(|a, b| cmp_factor_lists(&a.0, &b.0));
+        let mut signs = Vec::with_capacity(terms.len() + 1);
+        let mut bodies = Vec::with_capacity(terms.len() + 1);
+        for (key, c) in &terms {
+            signs.push(c.is_negative());
+            bodies.push(self.product(c, key));
+        }
+        if let Some(c) = constant {
+            signs.push(c.is_negative());
+            bodies.push(self.product(c, &[]));
+        }
+        join_signed(&signs, &bodies, nested)
+    }
+}
+
+/// Joins signed bodies into a sum, `a + b - c`; a `nested` sum is compact unless a body has a space.
+pub fn join_signed(negative: &[bool], bodies: &[String], nested: bool) -> String {
+    super::join_signs(negative, bodies, nested)
+}
+
+/// `p` printed in `style`: the same text as `to_string(&p.to_expr(), style)`.
+pub fn poly_to_string(p: &Poly, style: Style) -> String {
+    match Ranks::of([p]) {
+        Some(r) => Renderer::new(&r, style).sum(p, false),
+        None => super::to_string(&p.to_expr(), style),
+    }
+}
+
+/// Several polynomials printed in `style`, their atoms ranked once.
+pub fn polys_to_strings(ps: &[&Poly], style: Style) -> Vec<String> {
+    match Ranks::of(ps.iter().copied()) {
+        Some(r) => {
+            let mut renderer = Renderer::new(&r, style);
+            ps.iter().map(|p| renderer.sum(p, false)).collect()
+        }
+        None => ps
+            .iter()
+            .map(|p| super::to_string(&p.to_expr(), style))
+            .collect(),
+    }
+}
+
+fn sum_string(pieces: &[Piece], style: Style) -> String {
+    match style {
+        Style::Text | Style::Ascii => text::Printer::new(style).sum(pieces, false),
+        Style::Latex => latex::sum(pieces, false),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::to_poly;
+
+    fn p(s: &str) -> Poly {
+        to_poly(&crate::parse::parse_expr(s).expect("valid expression"))
+    }
+
+    #[test]
+    fn prints_what_the_canonical_expression_prints() {
+        let rows = [
+            "0",
+            "-3/2",
+            "m1 + m2 + m3",
+            "(m1 + m2)*g*cos(q1) - 2*a*sin(q1)*cos(q2)^2 + 1/2*I2*qdd1 - 3",
+            "m2*lc2^2*sin(q2)^2 + 2*m2*l1*lc2*cos(q2) + I1 + I2 + m1*lc1^2",
+            "qd1^2*qd2 - qd1*qd2^2 + qd1*qd2 + qd2^3*sin(q1)*sin(q3) + x^2 + x*y + y^2",
+            "pi*m1/2 + sqrt(2)*a/3 - m1/lc2 + g*m1/(l1*l2)",
+            "(a + b)^4*qdd3*sin(q2)*cos(q1) + theta1*alpha2 - lambda*gamma",
+        ];
+        for s in rows {
+            let poly = p(s);
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                let want = super::super::to_string(&poly.to_expr(), style);
+                assert_eq!(poly_to_string(&poly, style), want, "{s} in {style:?}");
+                if let Some(r) = Ranks::of([&poly]) {
+                    assert_eq!(sum_string(&r.pieces(&poly), style), want, "{s}");
+                }
+            }
+        }
+    }
+}
