@@ -15,13 +15,65 @@ use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::{Poly, Rational, Symbol};
 
-/// One signed display term: whether it is subtracted, and its magnitude as printed.
+/// One signed display term: whether it is subtracted, and its magnitude.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Shown {
     /// Whether the term carries a minus sign.
     pub negative: bool,
-    /// The term's magnitude, printed.
-    pub body: String,
+    /// The term's magnitude.
+    pub body: Body,
+}
+
+/// The magnitude of a display term.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Body {
+    /// A product, printed.
+    Product(String),
+    /// `before (inner) after`: a sum in parentheses between printed factors (`m_{2}` before it, the
+    /// key `\ddot{q}_{1}` after it), which a layout may replace by a name.
+    Group {
+        /// The factors before the parentheses (may be empty).
+        before: String,
+        /// The sum in the parentheses.
+        inner: Vec<Shown>,
+        /// The factors after them (may be empty).
+        after: String,
+        /// The style the parts are printed in.
+        style: Style,
+    },
+}
+
+impl Body {
+    /// The magnitude printed.
+    pub fn text(&self) -> String {
+        match self {
+            Body::Product(s) => s.clone(),
+            Body::Group {
+                before,
+                inner,
+                after,
+                style,
+            } => {
+                let inner = join_terms(inner, true);
+                let open = match style {
+                    Style::Latex => format!("\\left({inner}\\right)"),
+                    _ => format!("({inner})"),
+                };
+                let sep = if *style == Style::Ascii { "*" } else { " " };
+                let mut out = String::new();
+                if !before.is_empty() {
+                    out.push_str(before);
+                    out.push_str(sep);
+                }
+                out.push_str(&open);
+                if !after.is_empty() {
+                    out.push_str(sep);
+                    out.push_str(after);
+                }
+                out
+            }
+        }
+    }
 }
 
 /// Joins display terms into a sum, `a + b - c` (`0` when there are none).
@@ -31,7 +83,7 @@ pub fn join(terms: &[Shown]) -> String {
 
 fn join_terms(terms: &[Shown], nested: bool) -> String {
     let signs: Vec<bool> = terms.iter().map(|t| t.negative).collect();
-    let bodies: Vec<String> = terms.iter().map(|t| t.body.clone()).collect();
+    let bodies: Vec<String> = terms.iter().map(|t| t.body.text()).collect();
     join_signed(&signs, &bodies, nested)
 }
 
@@ -134,16 +186,16 @@ fn shown(
         all.sort_unstable_by_key(|&(r, _)| r);
         return vec![product(r, c, &all)];
     }
-    let inner = join_terms(&grouped(r, &coeff, style), true);
-    let open = match style {
-        Style::Latex => format!("\\left({inner}\\right)"),
-        _ => format!("({inner})"),
-    };
-    let key_text = product(r, &Rational::one(), key).body;
-    let sep = if style == Style::Ascii { "*" } else { " " };
+    let inner = grouped(r, &coeff, style);
+    let after = product(r, &Rational::one(), key).body.text();
     vec![Shown {
         negative: false,
-        body: format!("{open}{sep}{key_text}"),
+        body: Body::Group {
+            before: String::new(),
+            inner,
+            after,
+            style,
+        },
     }]
 }
 
@@ -195,16 +247,15 @@ fn grouped(r: &mut Renderer, terms: &[(Factors, Rational)], style: Style) -> Vec
             (Some(l), _) => {
                 g.sort_by(|a, b| super::poly::cmp_factor_lists(&a.0, &b.0));
                 let inner: Vec<Shown> = g.iter().map(|(f, c)| product(r, c, f)).collect();
-                let inner = join_terms(&inner, true);
-                let lead = product(r, &Rational::one(), &[l]).body;
-                let sep = if style == Style::Ascii { "*" } else { " " };
-                let body = match style {
-                    Style::Latex => format!("{lead}{sep}\\left({inner}\\right)"),
-                    _ => format!("{lead}{sep}({inner})"),
-                };
+                let before = product(r, &Rational::one(), &[l]).body.text();
                 out.push(Shown {
                     negative: false,
-                    body,
+                    body: Body::Group {
+                        before,
+                        inner,
+                        after: String::new(),
+                        style,
+                    },
                 });
             }
         }
@@ -216,6 +267,6 @@ fn grouped(r: &mut Renderer, terms: &[(Factors, Rational)], style: Style) -> Vec
 fn product(r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) -> Shown {
     Shown {
         negative: c.is_negative(),
-        body: r.product(c, factors),
+        body: Body::Product(r.product(c, factors)),
     }
 }

@@ -10,6 +10,7 @@
 
 use crate::algebra::tidy::{tidy_by, Grouping};
 use crate::algebra::{Expr, Kind, Symbol};
+use crate::print::equation::{Body, Shown};
 use crate::print::{self, Style};
 
 /// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80): the
@@ -62,6 +63,25 @@ pub fn width(latex: &str) -> usize {
 #[derive(Debug, Default)]
 pub struct Layout {
     abbreviations: usize,
+}
+
+/// One side of an equation to lay out: terms in the house style, or the display terms of a large side
+/// printed straight from its normal form ([`print::equation`]).
+#[derive(Clone, Debug)]
+pub enum Side {
+    /// Terms in display order.
+    Terms(Vec<Expr>),
+    /// Display terms (LaTeX) of a large side.
+    Shown(Vec<Shown>),
+}
+
+impl Side {
+    fn latex(&self) -> String {
+        match self {
+            Side::Terms(t) => print::sum_to_string(t, Style::Latex),
+            Side::Shown(s) => print::equation::join(s),
+        }
+    }
 }
 
 /// The LaTeX of one signed term, `-m_{1} g` or `m_{1} g`.
@@ -179,10 +199,10 @@ impl Layout {
     /// `  t1 + t2 &= u_{1}`. Otherwise every row is left-aligned and a long equation runs on over
     /// rows of at most [`LINE_WIDTH`] (`  & t1 + t2`, `  &\quad + t3 = u_{1}`); a term wider than
     /// a line has its widest sum factor abbreviated (`\Xi_{1}`), given after `\intertext{where}`.
-    pub fn equations(&mut self, equations: &[(Vec<Expr>, String)]) -> String {
+    pub fn equations(&mut self, equations: &[(Side, String)]) -> String {
         let one_line: Vec<(String, &String)> = equations
             .iter()
-            .map(|(terms, rhs)| (print::sum_to_string(terms, Style::Latex), rhs))
+            .map(|(side, rhs)| (side.latex(), rhs))
             .collect();
         let rows: Vec<String> = if one_line
             .iter()
@@ -193,17 +213,17 @@ impl Layout {
                 .map(|(l, r)| format!("  {l} &= {r}"))
                 .collect()
         } else {
-            let mut later: Vec<(String, Expr)> = Vec::new();
+            let mut later: Vec<(String, Side)> = Vec::new();
             let mut rows: Vec<String> = Vec::new();
-            for (terms, rhs) in equations {
+            for (side, rhs) in equations {
                 let end = format!(" = {rhs}");
-                rows.extend(self.left_rows(terms, &end, &mut later));
+                rows.extend(self.left_rows(side, &end, &mut later));
             }
             let mut first = true;
             while !later.is_empty() {
-                for (name, e) in std::mem::take(&mut later) {
+                for (name, side) in std::mem::take(&mut later) {
                     let start = format!("{name} = ");
-                    let mut these = self.left_rows(std::slice::from_ref(&e), "", &mut later);
+                    let mut these = self.left_rows(&side, "", &mut later);
                     these[0] = these[0].replacen("  & ", &format!("  & {start}"), 1);
                     if first {
                         these[0] = format!("  \\intertext{{where}}\n{}", these[0]);
@@ -224,13 +244,21 @@ impl Layout {
     /// most [`LINE_WIDTH`] wide.
     fn left_rows(
         &mut self,
-        terms: &[Expr],
+        side: &Side,
         end: &str,
-        later: &mut Vec<(String, Expr)>,
+        later: &mut Vec<(String, Side)>,
     ) -> Vec<String> {
         // Room for `\quad` (2), the end, and an abbreviation's `\Xi_{k} = ` (6) on the first row.
         let room = BUDGET.saturating_sub(width(end) + 8).max(20);
-        let lines = self.lines(terms, room, later);
+        let lines = match side {
+            Side::Terms(terms) => {
+                let mut exprs = Vec::new();
+                let lines = self.lines(terms, room, &mut exprs);
+                later.extend(exprs.into_iter().map(|(n, e)| (n, Side::Terms(vec![e]))));
+                lines
+            }
+            Side::Shown(shown) => self.shown_lines(shown, room, later),
+        };
         let last = lines.len() - 1;
         lines
             .iter()
@@ -244,6 +272,68 @@ impl Layout {
                 }
             })
             .collect()
+    }
+
+    /// Display terms as LaTeX lines of at most `room` width units, as [`Layout::lines`] lays out terms:
+    /// a group too wide for a line is abbreviated (`\Xi_{k}`) and its sum pushed onto `later`.
+    fn shown_lines(
+        &mut self,
+        shown: &[Shown],
+        room: usize,
+        later: &mut Vec<(String, Side)>,
+    ) -> Vec<String> {
+        let pieces: Vec<(bool, String)> = shown
+            .iter()
+            .map(|t| {
+                let text = t.body.text();
+                let body = match &t.body {
+                    Body::Group {
+                        before,
+                        inner,
+                        after,
+                        ..
+                    } if width(&text) > room => {
+                        self.abbreviations += 1;
+                        let name = print::to_string(
+                            &Expr::sym(Symbol::new(&format!("Xi{}", self.abbreviations))),
+                            Style::Latex,
+                        );
+                        later.push((name.clone(), Side::Shown(inner.clone())));
+                        [before.as_str(), name.as_str(), after.as_str()]
+                            .iter()
+                            .filter(|s| !s.is_empty())
+                            .copied()
+                            .collect::<Vec<&str>>()
+                            .join(" ")
+                    }
+                    _ => text,
+                };
+                (t.negative, body)
+            })
+            .collect();
+        let mut lines: Vec<String> = Vec::new();
+        let mut line = String::new();
+        let mut used = 0;
+        for (i, (negative, body)) in pieces.iter().enumerate() {
+            let joined = match (i, negative) {
+                (0, false) => body.clone(),
+                (0, true) => format!("-{body}"),
+                (_, false) => format!(" + {body}"),
+                (_, true) => format!(" - {body}"),
+            };
+            let w = width(&joined);
+            if !line.is_empty() && used + w > room {
+                lines.push(std::mem::take(&mut line));
+                used = 0;
+            }
+            used += w;
+            line.push_str(&joined);
+        }
+        if pieces.is_empty() {
+            line.push('0');
+        }
+        lines.push(line);
+        lines
     }
 
     /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.

@@ -14,7 +14,7 @@ use crate::algebra::tidy::equation_terms;
 use crate::algebra::{Expr, Poly, Symbol};
 use crate::dynamics::check::Claim;
 use crate::dynamics::{Derivation, Frame};
-use crate::print::layout::Layout;
+use crate::print::layout::{Layout, Side};
 use crate::print::{self, Style};
 
 /// Which formulation gives the equations.
@@ -60,6 +60,17 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
 /// medium-sized entries would cost more than deriving them.
 pub const JSON_TIDY_BUDGET: usize = 16;
 
+/// Equation `k`'s left side for the LaTeX layout: house-style terms while it has at most
+/// [`DISPLAY_BUDGET`] terms, display terms from the normal form beyond.
+pub fn lhs_side(tau_k: &Poly) -> Side {
+    if tau_k.len() > DISPLAY_BUDGET {
+        if let Some(shown) = print::equation::pieces(tau_k, Style::Latex) {
+            return Side::Shown(shown);
+        }
+    }
+    Side::Terms(lhs_terms(tau_k))
+}
+
 /// An expression printed in `style`: simplified into the house style while it has at most `budget`
 /// terms, its normal form as it stands beyond.
 pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
@@ -74,12 +85,12 @@ pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
 /// long equations broken across rows ([`Layout::equations`]).
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
     if style == Style::Latex {
-        let equations: Vec<(Vec<Expr>, String)> = tau(der, method)
+        let equations: Vec<(Side, String)> = tau(der, method)
             .iter()
             .zip(&der.robot().inputs)
             .map(|(t, u)| {
                 (
-                    lhs_terms(t),
+                    lhs_side(t),
                     print::to_string(&Expr::sym(Symbol::new(u)), style),
                 )
             })
