@@ -84,6 +84,10 @@ pub enum Command {
         /// Also compile it with pdflatex into FILE.pdf next to FILE.tex (needs -o).
         #[arg(long)]
         pdf: bool,
+        /// A brief sheet: the scene, D(q), the Christoffel symbols, g(q) and the equations (for
+        /// large robots).
+        #[arg(long)]
+        brief: bool,
     },
     /// Numbers from the derived equations: τ (default), D(q), C(q, q̇), g(q), or the forward dynamics
     /// q̈ = D⁻¹(u − C q̇ − g), for given parameter values and state.
@@ -251,7 +255,15 @@ pub fn run(args: Args) -> Result<String, CliError> {
             frame,
             output,
             pdf,
-        } => sheet_cmd::sheet_cmd(scene.as_deref(), method, frame, output.as_deref(), pdf),
+            brief,
+        } => sheet_cmd::sheet_cmd(
+            scene.as_deref(),
+            method,
+            frame,
+            output.as_deref(),
+            pdf,
+            brief,
+        ),
         Command::Eval {
             scene,
             set,

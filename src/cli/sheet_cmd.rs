@@ -36,6 +36,7 @@ pub fn sheet_cmd(
     frame: SheetFrame,
     output: Option<&str>,
     pdf: bool,
+    brief: bool,
 ) -> Result<String, CliError> {
     if pdf && output.is_none() {
         return Err(CliError::Input(
@@ -54,7 +55,7 @@ pub fn sheet_cmd(
             SheetFrame::Inertial => Frames::Inertial,
             SheetFrame::Both => Frames::Both,
         },
-        scope: Scope::Full,
+        scope: if brief { Scope::Brief } else { Scope::Full },
     };
     let tex = sheet(&der, &opts);
     let Some(path) = output else {

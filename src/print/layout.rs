@@ -405,14 +405,22 @@ impl Layout {
             );
         }
         let mut out = String::new();
+        let zeros = shown
+            .iter()
+            .enumerate()
+            .flat_map(|(i, row)| row.iter().enumerate().map(move |(j, e)| (i, j, e)))
+            .any(|(i, j, e)| !(symmetric && j < i) && e.is_zero());
+        let others = if zeros { " (the others are zero)" } else { "" };
         if symmetric {
-            out.push_str("The matrix is symmetric; its entries on and above the diagonal are\n");
+            out.push_str(&format!(
+                "The matrix is symmetric; its entries on and above the diagonal are{others}\n"
+            ));
         } else {
-            out.push_str("Its entries are\n");
+            out.push_str(&format!("Its entries are{others}\n"));
         }
         for (i, row) in shown.iter().enumerate() {
             for (j, e) in row.iter().enumerate() {
-                if symmetric && j < i {
+                if (symmetric && j < i) || e.is_zero() {
                     continue;
                 }
                 out.push_str(&self.terms(

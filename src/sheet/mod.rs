@@ -11,13 +11,16 @@
 //! The document uses only `amsmath`, `amssymb`, `geometry` and `booktabs` (TeX Live's
 //! `texlive-latex-base` and `texlive-latex-recommended`).
 
+mod compact;
 mod lagrange;
+mod lagrange_compact;
 pub use crate::print::layout;
 mod newton_euler;
+mod newton_euler_compact;
 mod scene;
 
 use crate::algebra::{Expr, Symbol};
-use crate::dynamics::check::check;
+use crate::dynamics::check::{check, ClaimProof};
 use crate::dynamics::{Derivation, Frame};
 use crate::print::{self, Style};
 use layout::Layout;
@@ -53,9 +56,11 @@ pub enum Scope {
     #[default]
     Full,
     /// The scene, then Euler–Lagrange `D(q)` and `g(q)` only: no Jacobians, Christoffel symbols,
-    /// equations, Newton–Euler or proofs. For arms whose full sheet is too long to typeset quickly
-    /// (the fully symbolic PUMA 560).
+    /// equations, Newton–Euler or proofs.
     MassAndGravity,
+    /// `symdyn sheet --brief`: the scene, then `D(q)`, the Christoffel symbols (`C`), `g(q)` and
+    /// the equations; no Jacobians, Newton–Euler or proofs. For large robots.
+    Brief,
 }
 
 /// What a sheet contains.
@@ -71,11 +76,11 @@ pub struct SheetOptions {
 
 impl SheetOptions {
     fn lagrange(&self) -> bool {
-        self.methods != Methods::NewtonEuler || self.scope == Scope::MassAndGravity
+        self.methods != Methods::NewtonEuler || self.scope != Scope::Full
     }
 
     fn frames(&self) -> Vec<Frame> {
-        if self.methods == Methods::Lagrange || self.scope == Scope::MassAndGravity {
+        if self.methods == Methods::Lagrange || self.scope != Scope::Full {
             return vec![];
         }
         match self.frames {
@@ -86,30 +91,155 @@ impl SheetOptions {
     }
 }
 
+/// The most terms an entry of `D(q)` may have, expanded, for the sheet to show the derivation
+/// expanded as a textbook does; beyond it the sheet uses the compact form ([`compact`]).
+const EXPANDED_TERMS: usize = 24;
+
+/// Whether the sheet shows the dynamics over named intermediates: some entry of `D(q)` is longer
+/// than [`EXPANDED_TERMS`] terms expanded (decided on the compact form, so a large robot is never
+/// expanded to find out).
+fn compact_mode(der: &Derivation) -> bool {
+    let cd = der.compact();
+    let mut ex = cd.arena.expander(EXPANDED_TERMS);
+    !cd.d.iter().flatten().all(|e| ex.expand(e).is_ok())
+}
+
+/// Where the notation paragraph goes, once the document knows whether it abbreviates.
+const NOTATION: &str = "%%NOTATION%%\n";
+
 /// The complete LaTeX document of the solution sheet of `der`.
 pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     let mut lay = Layout::new();
+    let compact = compact_mode(der);
     let mut out = String::from(PREAMBLE);
     out.push_str(&format!(
         "\\begin{{center}}\n{{\\Large\\bfseries Equations of motion: {}}}\n\\end{{center}}\n\n",
         text(&der.robot().name)
     ));
-    out.push_str(&scene::section(der, &mut lay));
+    out.push_str(NOTATION);
+    out.push_str(&scene::section(der, &mut lay, opts.scope == Scope::Brief));
     if opts.lagrange() {
-        out.push_str(&lagrange::section(der, &mut lay, opts.scope));
+        out.push_str(&match (compact, opts.scope) {
+            (_, Scope::MassAndGravity) | (false, _) => lagrange::section(der, &mut lay, opts.scope),
+            (true, scope) => lagrange_compact::section(der, &mut lay, scope == Scope::Brief),
+        });
     }
     for frame in opts.frames() {
-        out.push_str(&newton_euler::section(der, frame, &mut lay));
+        out.push_str(&if compact {
+            newton_euler_compact::section(der, frame, &mut lay)
+        } else {
+            newton_euler::section(der, frame, &mut lay)
+        });
     }
     match opts.scope {
         Scope::Full => out.push_str(&agreement(der)),
-        Scope::MassAndGravity => out.push_str(
-            "This sheet shows $D(q)$ and $g(q)$ only; \\texttt{symdyn check} proves that the \
-             Euler--Lagrange and Newton--Euler formulations agree.\n\n",
+        Scope::MassAndGravity | Scope::Brief => out.push_str(
+            "\\texttt{symdyn check} proves that the Euler--Lagrange and Newton--Euler formulations \
+             agree.\n\n",
         ),
     }
     out.push_str("\\end{document}\n");
-    out
+    let (out, abbreviated) = abbreviate_trig(&out, der);
+    let notation = if abbreviated {
+        "We write $s_{i} = \\sin q_{i}$, $c_{i} = \\cos q_{i}$, and for sums of joint angles \
+         $s_{ij} = \\sin(q_i + q_j)$, $c_{ij} = \\cos(q_i + q_j)$, $s_{ijk} = \\sin(q_i + q_j + q_k)$, \
+         \\dots\n\n"
+    } else {
+        ""
+    };
+    out.replacen(NOTATION, notation, 1)
+}
+
+/// The sheet with `\sin`/`\cos` of a joint angle or of a plain sum of joint angles written as the
+/// book abbreviates them, `s_{1}`, `c_{23}` (powers kept: `s_{2}^{2}`), and whether anything was
+/// abbreviated. Left as they are when a scene symbol would read the same (a parameter `s1`).
+fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
+    let clash = crate::numeric::robot_parameters(der.robot())
+        .iter()
+        .any(|s| {
+            let n = s.ascii_name();
+            let mut c = n.chars();
+            matches!(c.next(), Some('s' | 'c')) && c.all(|ch| ch.is_ascii_digit() || ch == '_')
+        });
+    if clash {
+        return (latex.to_string(), false);
+    }
+    let mut out = String::with_capacity(latex.len());
+    let mut rest = latex;
+    let mut any = false;
+    while let Some(at) = rest.find(['\\']) {
+        out.push_str(&rest[..at]);
+        let tail = &rest[at..];
+        match trig_at(tail) {
+            Some((text, used)) => {
+                out.push_str(&text);
+                rest = &tail[used..];
+                any = true;
+            }
+            None => {
+                out.push('\\');
+                rest = &tail[1..];
+            }
+        }
+    }
+    out.push_str(rest);
+    (out, any)
+}
+
+/// `\sin^{2} q_{3}` or `\cos\left(q_{2}+q_{3}\right)` at the start of `s` as `s_{3}^{2}`, `c_{23}`,
+/// with the bytes it spans.
+fn trig_at(s: &str) -> Option<(String, usize)> {
+    let (letter, rest) = if let Some(r) = s.strip_prefix("\\sin") {
+        ('s', r)
+    } else if let Some(r) = s.strip_prefix("\\cos") {
+        ('c', r)
+    } else {
+        return None;
+    };
+    let (power, rest) = match rest.strip_prefix("^{") {
+        Some(r) => {
+            let end = r.find('}')?;
+            (format!("^{{{}}}", &r[..end]), &r[end + 1..])
+        }
+        None => (String::new(), rest),
+    };
+    let index = |t: &str| -> Option<(String, usize)> {
+        let r = t.strip_prefix("q_{")?;
+        let end = r.find('}')?;
+        let digits = &r[..end];
+        (!digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
+            .then(|| (digits.to_string(), 3 + end + 1))
+    };
+    let (idx, rest_used): (Vec<String>, usize) = if let Some(r) = rest.strip_prefix(' ') {
+        let (i, used) = index(r)?;
+        // A bare argument ends the factor: nothing may follow that continues it.
+        if r[used..].starts_with(['_', '^', '{']) {
+            return None;
+        }
+        (vec![i], 1 + used)
+    } else if let Some(r) = rest.strip_prefix("\\left(") {
+        let end = r.find("\\right)")?;
+        let inner = &r[..end];
+        let mut idx = Vec::new();
+        for part in inner.split('+') {
+            let part = part.trim();
+            let (i, used) = index(part)?;
+            if used != part.len() {
+                return None;
+            }
+            idx.push(i);
+        }
+        (idx, 6 + end + 7)
+    } else {
+        return None;
+    };
+    let used = s.len() - rest.len() + rest_used;
+    let sub = if idx.iter().all(|i| i.len() == 1) {
+        idx.concat()
+    } else {
+        idx.join(",")
+    };
+    Some((format!("{letter}_{{{sub}}}{power}"), used))
 }
 
 const PREAMBLE: &str = "\\documentclass[10pt]{article}
@@ -122,17 +252,39 @@ const PREAMBLE: &str = "\\documentclass[10pt]{article}
 \\begin{document}
 ";
 
-/// The last section: both formulations agree, each claim decided by the exact zero test.
+/// The last section: both formulations agree, each claim with the proof it got.
 fn agreement(der: &Derivation) -> String {
     let claims = check(der);
     let mut out = String::from("\\section*{Both formulations agree}\n");
-    out.push_str(
-        "Each claim below is decided by the exact zero test of the polynomial normal form \
-         (the difference of the two sides reduces to zero), not by sampling.\n\\begin{itemize}\n",
-    );
+    if claims.iter().all(|c| c.proof == ClaimProof::Exact) {
+        out.push_str(
+            "Each claim below is decided by the exact zero test of the polynomial normal form \
+             (the difference of the two sides reduces to zero), not by sampling.\n\\begin{itemize}\n",
+        );
+    } else {
+        out.push_str(
+            "Each claim below is decided by the exact zero test of the polynomial normal form while \
+             both sides expand to at most 1000 terms; beyond, by exact rational evaluation at random \
+             points (every symbol a random integer, every angle given by a random rational \
+             half-angle tangent), with the Schwartz--Zippel bound on the chance of a wrong \
+             ``equal'' stated with it.\n\\begin{itemize}\n",
+        );
+    }
     for c in &claims {
+        let how = match &c.proof {
+            ClaimProof::Exact => String::new(),
+            ClaimProof::Randomized { points, error_log2 } => format!(
+                " (at {points} random rational points; probability of a wrong proof below \
+                 $2^{{{}}}$)",
+                error_log2.ceil() as i64
+            ),
+            ClaimProof::Undecided => " (undecided)".to_string(),
+        };
         if c.holds {
-            out.push_str(&format!("\\item Proved: {}.\n", claim_text(&c.statement)));
+            out.push_str(&format!(
+                "\\item Proved: {}{how}.\n",
+                claim_text(&c.statement)
+            ));
         } else {
             let fails: Vec<String> = c.failures.iter().map(|f| text(f)).collect();
             out.push_str(&format!(
@@ -194,4 +346,37 @@ pub(crate) fn sym(name: &str) -> String {
 /// An expression's LaTeX, inline.
 pub(crate) fn math(e: &Expr) -> String {
     print::to_string(e, Style::Latex)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn joint_angles_are_abbreviated_as_the_book_writes_them() {
+        for (latex, want) in [
+            ("\\sin q_{1} m_{1}", "s_{1} m_{1}"),
+            ("\\cos^{2} q_{2}", "c_{2}^{2}"),
+            (
+                "\\sin\\left(q_{2}+q_{3}\\right) \\dot{q}_{1}",
+                "s_{23} \\dot{q}_{1}",
+            ),
+            ("\\cos\\left(q_{1}\\right) l_{1}", "c_{1} l_{1}"),
+            ("\\cos\\left(q_{2}+q_{10}\\right)", "c_{2,10}"),
+            (
+                "\\sin\\left(q_{1}-q_{2}\\right)",
+                "\\sin\\left(q_{1}-q_{2}\\right)",
+            ),
+            ("\\sin\\left(2 q_{1}\\right)", "\\sin\\left(2 q_{1}\\right)"),
+            ("\\sin \\alpha_{2}", "\\sin \\alpha_{2}"),
+        ] {
+            let der = Derivation::new(
+                crate::parse::parse_scene(crate::parse::BUILTIN_PPP)
+                    .expect("built in")
+                    .robot,
+            )
+            .expect("valid");
+            assert_eq!(abbreviate_trig(latex, &der).0, want, "{latex}");
+        }
+    }
 }

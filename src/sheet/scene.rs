@@ -28,11 +28,10 @@ fn column(v: &[Expr]) -> String {
     format!("[{}]^{{T}}", cells.join(", "))
 }
 
-/// The section.
-pub(super) fn section(der: &Derivation, lay: &mut Layout) -> String {
+/// The section; `brief` leaves out the link transforms.
+pub(super) fn section(der: &Derivation, lay: &mut Layout, brief: bool) -> String {
     let robot = der.robot();
     let n = robot.dof();
-    let kin = der.kinematics();
     let mut out = String::from("\\section*{The manipulator}\n");
     let kinds: String = robot
         .joints
@@ -116,11 +115,15 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout) -> String {
         column(&robot.gravity),
         inputs.join(", ")
     ));
+    if brief {
+        out.push_str(&inertia(der, lay, n));
+        return out;
+    }
     out.push_str(
         "\\subsection*{Frames}\nThe link transforms $A_i$ (the axes $R^{i-1}_i$ and the origin \
          $o^{i-1}_i$ of frame $i$ in frame $i-1$) are\n",
     );
-    for (i, jf) in kin.joints.iter().enumerate() {
+    for (i, jf) in der.joints().iter().enumerate() {
         let mut rows = mat_to_rows(&jf.rot);
         for (k, row) in rows.iter_mut().enumerate() {
             row.push(jf.origin.0[k].to_expr());
@@ -137,7 +140,6 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout) -> String {
 /// The inertia tensors of the links that rotate, and the facts about the others.
 fn inertia(der: &Derivation, lay: &mut Layout, n: usize) -> String {
     let robot = der.robot();
-    let kin = der.kinematics();
     let mut out = String::from("\\subsection*{Inertia}\n");
     for fact in der.facts() {
         match fact {
@@ -163,7 +165,7 @@ fn inertia(der: &Derivation, lay: &mut Layout, n: usize) -> String {
         }
     }
     for i in 0..n {
-        if !kin.rotates[i] {
+        if !der.rotates()[i] {
             continue;
         }
         match &robot.links[i].inertia {
