@@ -102,8 +102,9 @@ impl Derivation {
             .get_or_init(|| CompactDynamics::derive(&self.robot, &self.joints))
     }
 
-    /// The structural facts of this robot (known before deriving, plus `D(q)` constant once derived by
-    /// Euler–Lagrange).
+    /// The structural facts of this robot (known before deriving, plus `D(q)` constant, decided on the
+    /// compact `D` by composite rigid bodies: no entry depends on a position, so the expanded one
+    /// does not either, and no expanded derivation is needed to say so).
     pub fn facts(&self) -> Vec<Fact> {
         let mut facts = Vec::new();
         if self
@@ -122,7 +123,9 @@ impl Derivation {
                 facts.push(Fact::NonRotatingLinks(still));
             }
         }
-        facts.extend(self.lagrange().facts.iter().cloned());
+        if self.compact().d_constant {
+            facts.push(Fact::ConstantMassMatrix);
+        }
         facts
     }
 

@@ -21,7 +21,7 @@ use std::collections::HashSet;
 
 /// The most terms a value is tidied (angle sums contracted, grouped) before it is printed; longer
 /// values are printed from their normal form.
-const TIDY_TERMS: usize = 40;
+const TIDY_TERMS: usize = 16;
 
 /// `x`, `y`, `z` for components 1, 2, 3.
 fn axis(k: &str) -> Option<&'static str> {
@@ -237,26 +237,52 @@ impl<'a> Names<'a> {
             parts.push(t);
         }
         let poly = Poly::sum(parts.iter());
-        if poly.len() <= TIDY_TERMS {
+        // Tidying pays where angle sums can be contracted: two terms with sines or cosines.
+        let trig_terms = poly
+            .terms()
+            .iter()
+            .filter(|(m, _)| {
+                m.factors().iter().any(|&(id, _)| {
+                    matches!(
+                        crate::algebra::atom::class(id),
+                        crate::algebra::atom::Class::Sin | crate::algebra::atom::Class::Cos
+                    )
+                })
+            })
+            .count();
+        if trig_terms >= 2 && poly.len() <= TIDY_TERMS {
             tidy_by(&poly.to_expr(), Grouping::Trig)
         } else {
             poly.to_expr()
         }
     }
 
-    /// The finished LaTeX with the placeholders replaced by the book's names.
+    /// The finished LaTeX with the placeholders (`z_{zq17}`) replaced by the book's names.
     pub fn finish(&self, latex: &str) -> String {
-        if !latex.contains("z_{zq") {
-            return latex.to_string();
-        }
-        let mut out = latex.to_string();
-        // Longer tokens first, so `z_{zq17}` is never taken for `z_{zq1}` (the brace ends a token
-        // anyway; the order only keeps the work small).
-        for (token, name) in self.tokens.iter().rev() {
-            if out.contains(token.as_str()) {
-                out = out.replace(token.as_str(), &format!("{{{name}}}"));
+        const OPEN: &str = "z_{zq";
+        let mut out = String::with_capacity(latex.len() + latex.len() / 4);
+        let mut rest = latex;
+        while let Some(at) = rest.find(OPEN) {
+            out.push_str(&rest[..at]);
+            let after = &rest[at + OPEN.len()..];
+            let digits = after.bytes().take_while(u8::is_ascii_digit).count();
+            match (
+                after[..digits].parse::<usize>(),
+                after[digits..].starts_with('}'),
+            ) {
+                (Ok(k), true) if k < self.tokens.len() => {
+                    out.push('{');
+                    out.push_str(&self.tokens[k].1);
+                    out.push('}');
+                    rest = &after[digits + 1..];
+                }
+                _ => {
+                    out.push_str(OPEN);
+                    rest = after;
+                }
             }
         }
+        out.push_str(rest);
         out
     }
 
