@@ -171,8 +171,8 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
     s.push_str("of the measuring processes.\n\n");
     s.push_str("The compact Newton–Euler (`derive --compact`, `dynamics::ne_compact`) is τ as a program of named ");
     s.push_str("intermediates, each exact and canonical; its size is its lines and their operations (no sharing counted).\n\n");
-    s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | compact (all quantities) | check (body) | check (both frames) | proof | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS |\n");
-    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | compact (all quantities) | check (body) | check (both frames) | proof | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS (check) | peak RSS (all) |\n");
+    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
     let deriv = [
         "el",
         "ne",
@@ -204,11 +204,17 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             .map(|r| format!("{} / {}", opt(r.terms), opt(r.ops)))
             .unwrap_or_else(|| "–".into());
         let check_body = find(records, &robot, "check-body");
+        let check_rss = ["check-body", "check"]
+            .iter()
+            .filter_map(|m| find(records, &robot, m).and_then(|r| r.peak_rss_kib))
+            .max()
+            .map(|k| format!("{:.1} MiB", k as f64 / 1024.0))
+            .unwrap_or_else(|| "–".into());
         let proof = check_body
             .map(|r| r.note.trim_start_matches(|c: char| !c.is_ascii_digit()))
             .unwrap_or("–");
         s.push_str(&format!(
-            "| {robot} | {n} | {} | {} | {} | {} | {} | {proof} | {} | {} | {} | {compact_size} | {rss} |\n",
+            "| {robot} | {n} | {} | {} | {} | {} | {} | {proof} | {} | {} | {} | {compact_size} | {check_rss} | {rss} |\n",
             cell(el),
             cell(find(records, &robot, "ne")),
             cell(find(records, &robot, "el-compact")),
