@@ -12,6 +12,7 @@
 pub mod algebra;
 pub mod bench;
 pub mod chains;
+pub mod codegen;
 pub mod dynamics;
 pub mod numeric;
 pub mod parse;

@@ -172,7 +172,9 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
     s.push_str("The compact Newton–Euler (`derive --compact`, `dynamics::ne_compact`) is τ as a program of named ");
     s.push_str("intermediates, each exact and canonical; its size is its lines and their operations (no sharing counted).\n\n");
     s.push_str("| robot | n | Euler–Lagrange | Newton–Euler | compact (all quantities) | check (body) | check (both frames) | proof | τ terms | τ ops (mults + adds) | NE compact | compact lines / ops | peak RSS (check) | peak RSS (all) |\n");
-    s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    s.push_str(
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+    );
     let deriv = [
         "el",
         "ne",

@@ -46,7 +46,7 @@ pub(super) fn load(path: Option<&str>) -> Result<Derivation, CliError> {
 }
 
 /// Reads and parses the scene, printing its warnings to stderr: its display name and robot.
-fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError> {
+pub(super) fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError> {
     let (name, source) = match path {
         Some(p) => (
             p.to_string(),

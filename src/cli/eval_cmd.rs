@@ -133,7 +133,7 @@ fn required<'a>(
 }
 
 /// The parameter values of `--set`.
-fn parameters(set: &[String]) -> Result<Vec<(Symbol, Expr, f64)>, CliError> {
+pub(super) fn parameters(set: &[String]) -> Result<Vec<(Symbol, Expr, f64)>, CliError> {
     let mut out: Vec<(Symbol, Expr, f64)> = Vec::new();
     for item in set.iter().flat_map(|s| s.split(',')) {
         let Some((name, value)) = item.split_once('=') else {

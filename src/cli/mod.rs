@@ -4,6 +4,7 @@
 
 mod algebra_cmds;
 mod bench_cmd;
+mod codegen_cmd;
 mod derive_cmds;
 mod error;
 mod eval_cmd;
@@ -118,6 +119,34 @@ pub enum Command {
         /// Evaluate exactly (every value rational, e.g. angles as rational multiples of pi).
         #[arg(long)]
         exact: bool,
+    },
+    /// Generated code: τ, D(q), h, g, C or the forward dynamics q̈ as C, Rust or Python functions of
+    /// (p, q, q̇, q̈, u), with their cost in multiplications, additions, sin/cos and divisions.
+    Codegen {
+        /// The scene file.
+        scene: Option<String>,
+        /// The language.
+        #[arg(long, value_enum, default_value = "c")]
+        lang: codegen_cmd::LangArg,
+        /// The quantities, comma-separated: tau, M, h, g, C, qdd (default tau).
+        #[arg(long, value_name = "WHAT,...")]
+        what: Vec<String>,
+        /// Parameter values folded in exactly, name=value comma-separated; the others are inputs p.
+        #[arg(
+            long = "set",
+            value_name = "NAME=VALUE,...",
+            allow_hyphen_values = true
+        )]
+        set: Vec<String>,
+        /// Write the files into this directory (every file or none) instead of printing them.
+        #[arg(short, long, value_name = "DIR")]
+        output: Option<String>,
+        /// The prefix of the names (default: the scene's name made an identifier).
+        #[arg(long)]
+        prefix: Option<String>,
+        /// text: the code (or what was written); json: the manifest.
+        #[arg(long, value_enum, default_value = "text")]
+        format: codegen_cmd::CodegenFormat,
     },
     /// Benchmarks: derivation times, result sizes, numeric evaluation, peak memory, end-to-end runs and
     /// (with --peers) the SymPy/SymEngine peers; writes results.csv, benchmarks.md and charts (SVG,
@@ -284,6 +313,23 @@ pub fn run(args: Args) -> Result<String, CliError> {
             what,
             format,
             exact,
+        }),
+        Command::Codegen {
+            scene,
+            lang,
+            what,
+            set,
+            output,
+            prefix,
+            format,
+        } => codegen_cmd::codegen(codegen_cmd::CodegenArgs {
+            scene: scene.as_deref(),
+            lang,
+            what: &what,
+            set: &set,
+            out: output.as_deref(),
+            prefix: prefix.as_deref(),
+            format,
         }),
         Command::Bench {
             quick,

@@ -35,7 +35,7 @@ impl Val {
         Val::K(if x == 0.0 { 0 } else { x.to_bits() })
     }
 
-    fn constant(self) -> Option<f64> {
+    pub(crate) fn constant(self) -> Option<f64> {
         match self {
             Val::K(b) => Some(f64::from_bits(b)),
             Val::N(_) => None,
@@ -62,6 +62,8 @@ pub(crate) enum Op {
     Sin(Val),
     /// `cos a`.
     Cos(Val),
+    /// `a / b` (generated code's solves only; `compile_tau` never records one).
+    Div(Val, Val),
 }
 
 /// The recorded DAG; nodes are in creation order, which is a topological order.
@@ -114,6 +116,15 @@ impl Graph {
         if a == b {
             return Val::k(0.0);
         }
+        // (x + y) − x = y, the sum of a named value and its own part taken back.
+        if let Some(Op::Add(x, y)) = self.op_of(a) {
+            if x == b {
+                return y;
+            }
+            if y == b {
+                return x;
+            }
+        }
         match (a.constant(), b.constant()) {
             (Some(x), Some(y)) => return Val::k(x - y),
             (Some(0.0), None) => return self.neg(b),
@@ -151,7 +162,7 @@ impl Graph {
     }
 
     /// `c · x` for a constant `c`.
-    fn scale(&mut self, c: f64, x: Val) -> Val {
+    pub(crate) fn scale(&mut self, c: f64, x: Val) -> Val {
         if c == 0.0 {
             return Val::k(0.0);
         }
@@ -180,7 +191,19 @@ impl Graph {
         }
     }
 
-    fn powi(&mut self, a: Val, k: i32) -> Val {
+    /// `a / b`, folded when both are constants, `a` when `b` is one.
+    pub(crate) fn div(&mut self, a: Val, b: Val) -> Val {
+        match (a.constant(), b.constant()) {
+            (Some(x), Some(y)) => return Val::k(x / y),
+            (Some(0.0), _) => return Val::k(0.0),
+            (_, Some(1.0)) => return a,
+            (_, Some(y)) => return self.scale(1.0 / y, a),
+            _ => {}
+        }
+        self.node(Op::Div(a, b))
+    }
+
+    pub(crate) fn powi(&mut self, a: Val, k: i32) -> Val {
         match (k, a.constant()) {
             (0, _) => Val::k(1.0),
             (1, _) => a,
@@ -190,7 +213,7 @@ impl Graph {
         }
     }
 
-    fn sin_cos(&mut self, f: Func, a: Val) -> Val {
+    pub(crate) fn sin_cos(&mut self, f: Func, a: Val) -> Val {
         match (f, a.constant()) {
             (Func::Sin, Some(x)) => Val::k(x.sin()),
             (Func::Cos, Some(x)) => Val::k(x.cos()),

@@ -1,0 +1,123 @@
+//! The quantities to generate, in one compact arena, from the scene with the `--set` values folded in.
+
+use super::{CodegenError, What};
+use crate::algebra::compact::Compact;
+use crate::algebra::{subs, Expr, Poly, Symbol};
+use crate::dynamics::compact::{arena_for, christoffel, crba};
+use crate::dynamics::kinematics::{joint_frame, JointFrame};
+use crate::dynamics::model::Robot;
+use crate::dynamics::ne_compact::{tau_into, Motion};
+use crate::numeric::robot_parameters;
+use std::collections::{BTreeMap, HashMap};
+
+/// Every requested quantity over one arena.
+#[derive(Clone, Debug)]
+pub struct Built {
+    /// The robot with the values folded in.
+    pub robot: Robot,
+    /// The named intermediates.
+    pub arena: Compact,
+    /// The parameters left free, in order: the generated functions' `p`.
+    pub parameters: Vec<Symbol>,
+    /// The outputs of each quantity (`M`, `C` row-major; `qdd` holds `D`'s rows then `h`, solved
+    /// when lowered).
+    pub outputs: Vec<(What, Vec<Poly>)>,
+}
+
+/// `robot` with `values` substituted into every expression; each value must be a constant and each
+/// name a parameter of the scene.
+pub fn fold(robot: &Robot, values: &BTreeMap<Symbol, Expr>) -> Result<Robot, CodegenError> {
+    let known = robot_parameters(robot);
+    for (s, v) in values {
+        if !known.contains(s) {
+            let names: Vec<String> = known.iter().map(Symbol::ascii_name).collect();
+            return Err(CodegenError::UnknownParameter {
+                name: s.ascii_name(),
+                known: names.join(", "),
+            });
+        }
+        if !v.symbols().is_empty() {
+            return Err(CodegenError::NotConstant {
+                name: s.ascii_name(),
+                value: v.to_string(),
+            });
+        }
+    }
+    let map: HashMap<Symbol, Expr> = values.iter().map(|(k, v)| (k.clone(), v.clone())).collect();
+    let s = |e: &Expr| subs(e, &map).unwrap_or_else(|_| e.clone());
+    let mut r = robot.clone();
+    r.gravity = std::array::from_fn(|k| s(&robot.gravity[k]));
+    for j in &mut r.joints {
+        j.a = s(&j.a);
+        j.alpha = s(&j.alpha);
+        j.d = s(&j.d);
+        j.theta = s(&j.theta);
+    }
+    for l in &mut r.links {
+        l.mass = s(&l.mass);
+        l.com = std::array::from_fn(|k| s(&l.com[k]));
+        if let Some(t) = &mut l.inertia {
+            *t = std::array::from_fn(|a| std::array::from_fn(|b| s(&t[a][b])));
+        }
+    }
+    r.validate()?;
+    Ok(r)
+}
+
+/// Builds the quantities `what` of `robot` with `values` folded in.
+pub fn build(
+    robot: &Robot,
+    values: &BTreeMap<Symbol, Expr>,
+    what: &[What],
+) -> Result<Built, CodegenError> {
+    let robot = fold(robot, values)?;
+    let n = robot.dof();
+    let joints: Vec<JointFrame> = (1..=n).map(|i| joint_frame(&robot, i)).collect();
+    let mut arena = arena_for(&robot);
+    let mut d: Option<Vec<Vec<Poly>>> = None;
+    let mut h: Option<Vec<Poly>> = None;
+    let mut outputs = Vec::new();
+    for &w in what {
+        let out = match w {
+            What::Tau => tau_into(&robot, &joints, &mut arena, Motion::Full),
+            What::G => tau_into(&robot, &joints, &mut arena, Motion::Static),
+            What::H => h
+                .get_or_insert_with(|| {
+                    tau_into(&robot, &joints, &mut arena, Motion::NoAcceleration)
+                })
+                .clone(),
+            What::M => d
+                .get_or_insert_with(|| crba::mass_matrix(&robot, &joints, &mut arena))
+                .iter()
+                .flatten()
+                .cloned()
+                .collect(),
+            What::C => {
+                let dm = d
+                    .get_or_insert_with(|| crba::mass_matrix(&robot, &joints, &mut arena))
+                    .clone();
+                let c = christoffel::christoffel(&dm, &mut arena);
+                christoffel::coriolis(&c).into_iter().flatten().collect()
+            }
+            What::Qdd => {
+                let dm = d
+                    .get_or_insert_with(|| crba::mass_matrix(&robot, &joints, &mut arena))
+                    .clone();
+                let hv = h
+                    .get_or_insert_with(|| {
+                        tau_into(&robot, &joints, &mut arena, Motion::NoAcceleration)
+                    })
+                    .clone();
+                dm.into_iter().flatten().chain(hv).collect()
+            }
+        };
+        outputs.push((w, out));
+    }
+    let parameters = robot_parameters(&robot).into_iter().collect();
+    Ok(Built {
+        robot,
+        arena,
+        parameters,
+        outputs,
+    })
+}
