@@ -7,12 +7,14 @@
 //! - [`size`] — the size of a result, terms and operation counts (defined there);
 //! - [`measure`] — one (robot, method) measurement, run in the child (`symdyn bench-one`);
 //! - [`record`] — a measurement as a JSON line (child → parent) and as a CSV row;
+//! - [`native`] — the harnesses that time generated C and Rust and Pinocchio, and their output;
 //! - [`peer`] — the `ROBOT.json` read by the Python peers, and the peers' JSON answer;
 //! - [`chart`] — the two charts (SVG text, PNG bytes) with plotters;
 //! - [`report`] — `benchmarks.md`.
 
 pub mod chart;
 pub mod measure;
+pub mod native;
 pub mod peer;
 pub mod record;
 pub mod report;

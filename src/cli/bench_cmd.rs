@@ -338,7 +338,7 @@ const PEER_RUNS: [(&str, &str, bool); 3] = [
 ];
 
 /// Finds or makes the Python for the peers; `Err` says why there is none.
-fn peer_python(args: &BenchArgs) -> Result<PathBuf, String> {
+pub(super) fn peer_python(args: &BenchArgs) -> Result<PathBuf, String> {
     if let Some(p) = &args.python {
         return match Command::new(p).arg("--version").output() {
             Ok(o) if o.status.success() => Ok(PathBuf::from(p)),
@@ -814,6 +814,28 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     if args.peers {
         records.extend(run_peers(&args, limit, chains, &mut notes)?);
     }
+    records.extend(super::bench_native::count_records(&mut notes));
+    records.extend(super::bench_native::native_records(&args, &out, &mut notes));
+    // `symdyn codegen` itself, every quantity, on the largest all-symbolic chain.
+    let big = chains.max(1);
+    let scene = out.join(format!("chain-{big}.scene"));
+    let code = out.join("native").join(format!("chain-{big}"));
+    write(&scene, symdyn::chains::chain_scene(big).as_bytes())?;
+    let (scene_s, code_s) = (scene.display().to_string(), code.display().to_string());
+    records.push(runner.end_to_end(
+        (&format!("chain-{big}"), big),
+        "e2e-codegen",
+        &[
+            "codegen",
+            &scene_s,
+            "--what",
+            "tau,M,h,g,C,qdd",
+            "-o",
+            &code_s,
+        ],
+        runs,
+        budget,
+    ));
 
     match load_font() {
         Some(path) => eprintln!("bench: PNG text in {path}"),

@@ -4,6 +4,7 @@
 
 mod algebra_cmds;
 mod bench_cmd;
+mod bench_native;
 mod codegen_cmd;
 mod derive_cmds;
 mod error;

@@ -350,7 +350,7 @@ fn rust_file(
     let mut s = comment_block(head, "", "//! ", "");
     s.push_str(
         "//!\n//! No allocation; `no_std`-compatible: with the `libm` feature of the including crate (and a\n\
-         //! dependency on `libm`) sin, cos and sqrt come from libm, otherwise from `f64`.\n\n\
+         //! dependency on `libm`) sin and cos come from libm, otherwise from `f64`.\n\n\
          #![allow(clippy::all, dead_code, unused_variables, unused_parens, non_snake_case)]\n\n",
     );
     s.push_str(&format!(
@@ -361,7 +361,7 @@ fn rust_file(
         "/// The names of `p[0 .. NP]`.\npub const PARAMETERS: [&str; NP] = [{}];\n\n",
         names.join(", ")
     ));
-    for f in ["sin", "cos", "sqrt"] {
+    for f in ["sin", "cos"] {
         s.push_str(&format!(
             "#[cfg(feature = \"libm\")]\n#[inline(always)]\nfn {f}(x: f64) -> f64 {{\n    libm::{f}(x)\n}}\n\
              #[cfg(not(feature = \"libm\"))]\n#[inline(always)]\nfn {f}(x: f64) -> f64 {{\n    x.{f}()\n}}\n\n"
