@@ -20,3 +20,4 @@ pub mod print;
 pub mod repl;
 pub mod report;
 pub mod sheet;
+pub mod simulate;

@@ -9,6 +9,7 @@
 //! - [`record`] — a measurement as a JSON line (child → parent) and as a CSV row;
 //! - [`native`] — the harnesses that time generated C and Rust and Pinocchio, and their output;
 //! - [`peer`] — the `ROBOT.json` read by the Python peers, and the peers' JSON answer;
+//! - [`simulation`] — the energy-drift-against-time runs of `symdyn simulate`, their chart and table;
 //! - [`chart`] — the two charts (SVG text, PNG bytes) with plotters;
 //! - [`report`] — `benchmarks.md`.
 
@@ -19,6 +20,7 @@ pub mod peer;
 pub mod record;
 pub mod report;
 pub mod robots;
+pub mod simulation;
 pub mod size;
 
 pub use measure::{measure, Method};

@@ -847,7 +847,13 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     acc_spec.notes.extend(acc.as_ref().err().cloned());
     let (pts, chart_notes) = scaling_points(&records);
     let scale_spec = chart::scaling(pts, chart_notes);
-    for (stem, spec) in [("speed_accuracy", &acc_spec), ("scaling", &scale_spec)] {
+    let sims = super::bench_sim::simulation_points(&runner.exe, &out, &mut notes);
+    let sim_spec = symdyn::bench::simulation::chart(&sims);
+    for (stem, spec) in [
+        ("speed_accuracy", &acc_spec),
+        ("scaling", &scale_spec),
+        ("simulation", &sim_spec),
+    ] {
         if let Some(n) = write_chart(&out, stem, spec)? {
             notes.push(n);
         }
@@ -856,6 +862,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     write(&csv, to_csv(&records).as_bytes())?;
     let md = out.join("benchmarks.md");
     let mut text = markdown(&machine(command), &records, &notes);
+    text.push_str(&symdyn::bench::simulation::markdown(&sims));
     if let Ok(points) = &acc {
         text.push_str(&accuracy_markdown(points));
         write(&out.join("accuracy.csv"), accuracy_csv(points).as_bytes())?;

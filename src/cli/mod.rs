@@ -5,6 +5,7 @@
 mod algebra_cmds;
 mod bench_cmd;
 mod bench_native;
+mod bench_sim;
 mod codegen_cmd;
 mod derive_cmds;
 mod error;
@@ -12,6 +13,7 @@ mod eval_cmd;
 pub mod output;
 mod repl_cmd;
 mod sheet_cmd;
+mod simulate_cmd;
 
 pub use error::CliError;
 
@@ -148,6 +150,49 @@ pub enum Command {
         /// text: the code (or what was written); json: the manifest.
         #[arg(long, value_enum, default_value = "text")]
         format: codegen_cmd::CodegenFormat,
+    },
+    /// Forward simulation: integrates q̈ = D(q)⁻¹ (u − h(q, q̇)) from (q0, q̇0) and writes the
+    /// trajectory (CSV: t, q, q̇, kinetic and potential energy) and its plot (SVG).
+    Simulate {
+        /// The scene file.
+        scene: Option<String>,
+        /// Parameter values, name=value comma-separated (every parameter needs one).
+        #[arg(
+            long = "set",
+            value_name = "NAME=VALUE,...",
+            allow_hyphen_values = true
+        )]
+        set: Vec<String>,
+        /// Initial joint positions (default zero).
+        #[arg(long, allow_hyphen_values = true, value_name = "Q1,Q2,...")]
+        q0: Option<String>,
+        /// Initial joint velocities (default zero).
+        #[arg(long, allow_hyphen_values = true, value_name = "QD1,QD2,...")]
+        qd0: Option<String>,
+        /// Inputs, one expression of t, q1…, qd1… per joint (default zero), e.g. `-10*(q1-1)-2*qd1,0`.
+        #[arg(long, allow_hyphen_values = true, value_name = "U1,U2,...")]
+        u: Option<String>,
+        /// Final time, seconds.
+        #[arg(long)]
+        t: f64,
+        /// Step (rk4, euler) or first step (dopri5), seconds.
+        #[arg(long, default_value = "0.001")]
+        dt: f64,
+        /// rk4 (fixed step), dopri5 (adaptive Dormand–Prince 5(4)) or euler (explicit, fixed step).
+        #[arg(long, default_value = "rk4")]
+        integrator: String,
+        /// Relative and absolute tolerance of dopri5.
+        #[arg(long, default_value = "1e-8")]
+        tol: f64,
+        /// Record a sample at most this often, seconds (default: every step).
+        #[arg(long, default_value = "0")]
+        every: f64,
+        /// Write the trajectory as CSV here (without -o or --plot it is printed).
+        #[arg(short, long, value_name = "FILE.csv")]
+        output: Option<String>,
+        /// Write the plot of q(t) and the energy error as SVG here.
+        #[arg(long, value_name = "FILE.svg")]
+        plot: Option<String>,
     },
     /// Benchmarks: derivation times, result sizes, numeric evaluation, peak memory, end-to-end runs and
     /// (with --peers) the SymPy/SymEngine peers; writes results.csv, benchmarks.md and charts (SVG,
@@ -331,6 +376,33 @@ pub fn run(args: Args) -> Result<String, CliError> {
             out: output.as_deref(),
             prefix: prefix.as_deref(),
             format,
+        }),
+        Command::Simulate {
+            scene,
+            set,
+            q0,
+            qd0,
+            u,
+            t,
+            dt,
+            integrator,
+            tol,
+            every,
+            output,
+            plot,
+        } => simulate_cmd::simulate(simulate_cmd::SimulateArgs {
+            scene: scene.as_deref(),
+            set: &set,
+            q0: q0.as_deref(),
+            qd0: qd0.as_deref(),
+            u: u.as_deref(),
+            t,
+            dt,
+            integrator: &integrator,
+            tol,
+            every,
+            out: output.as_deref(),
+            plot: plot.as_deref(),
         }),
         Command::Bench {
             quick,

@@ -3,7 +3,7 @@
 use super::{CodegenError, What};
 use crate::algebra::compact::Compact;
 use crate::algebra::{subs, Expr, Poly, Symbol};
-use crate::dynamics::compact::{arena_for, christoffel, crba};
+use crate::dynamics::compact::{arena_for, christoffel, crba, potential};
 use crate::dynamics::kinematics::{joint_frame, JointFrame};
 use crate::dynamics::model::Robot;
 use crate::dynamics::ne_compact::{tau_into, Motion};
@@ -22,6 +22,9 @@ pub struct Built {
     /// The outputs of each quantity (`M`, `C` row-major; `qdd` holds `D`'s rows then `h`, solved
     /// when lowered).
     pub outputs: Vec<(What, Vec<Poly>)>,
+    /// The potential energy `P(q)` when asked for ([`build_with_potential`]; numeric use only,
+    /// never emitted as code).
+    pub potential: Option<Poly>,
 }
 
 /// `robot` with `values` substituted into every expression; each value must be a constant and each
@@ -119,5 +122,22 @@ pub fn build(
         arena,
         parameters,
         outputs,
+        potential: None,
     })
+}
+
+/// [`build`], and the potential energy `P(q)` (Spong et al. §7.3) in the same arena, for
+/// simulations that watch the energy.
+pub fn build_with_potential(
+    robot: &Robot,
+    values: &BTreeMap<Symbol, Expr>,
+    what: &[What],
+) -> Result<Built, CodegenError> {
+    let mut built = build(robot, values, what)?;
+    let joints: Vec<JointFrame> = (1..=built.robot.dof())
+        .map(|i| joint_frame(&built.robot, i))
+        .collect();
+    let (p, _) = potential::potential_and_gravity(&built.robot, &joints, &mut built.arena);
+    built.potential = Some(p);
+    Ok(built)
 }

@@ -25,6 +25,8 @@ pub struct Lowered {
     pub np: usize,
     /// Each quantity's outputs (for `qdd`, the solved accelerations).
     pub(crate) outputs: Vec<(What, Vec<Val>)>,
+    /// The potential energy, when built.
+    pub(crate) potential: Option<Val>,
 }
 
 /// One term: `coefficient · Π atom^e`.
@@ -285,7 +287,12 @@ pub fn lower(built: &Built) -> Lowered {
             .map(|(k, s)| (s.clone(), k as u32))
             .collect(),
     };
-    let all: Vec<&Poly> = built.outputs.iter().flat_map(|(_, v)| v.iter()).collect();
+    let all: Vec<&Poly> = built
+        .outputs
+        .iter()
+        .flat_map(|(_, v)| v.iter())
+        .chain(built.potential.iter())
+        .collect();
     for k in built.arena.live(all.iter().copied()) {
         let def = &lw.built.arena.defs()[k];
         let v = lw.poly(&def.value);
@@ -302,10 +309,12 @@ pub fn lower(built: &Built) -> Lowered {
         };
         outputs.push((*what, vals));
     }
+    let potential = built.potential.as_ref().map(|p| lw.poly(p));
     Lowered {
         graph: lw.graph,
         n,
         np: built.parameters.len(),
         outputs,
+        potential,
     }
 }

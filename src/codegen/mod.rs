@@ -18,6 +18,7 @@
 
 pub mod build;
 pub mod emit;
+pub mod eval;
 pub mod lower;
 
 use crate::algebra::{Expr, Symbol};
