@@ -25,6 +25,7 @@ use symdyn::parse::parse_scene;
 const EXAMPLES: &[&str] = &[
     "ppp",
     "elbow",
+    "elbow_geared",
     "rpp",
     "scara",
     "stanford",

@@ -18,6 +18,7 @@ use symdyn::parse::parse_scene;
 const EXAMPLES: &[&str] = &[
     "ppp",
     "elbow",
+    "elbow_geared",
     "rpp",
     "scara",
     "stanford",
@@ -80,18 +81,8 @@ fn modified_dh_expands_to_the_newton_euler_tau() {
 
 /// Every parameter symbol of a robot.
 fn parameters(robot: &Robot) -> HashSet<Symbol> {
-    let mut exprs: Vec<&Expr> = robot.gravity.iter().collect();
-    for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
-    }
-    for l in &robot.links {
-        exprs.push(&l.mass);
-        exprs.extend(l.com.iter());
-        if let Some(t) = &l.inertia {
-            exprs.extend(t.iter().flatten());
-        }
-    }
-    exprs
+    robot
+        .expressions()
         .into_iter()
         .flat_map(Expr::symbols)
         .filter(|s| !s.is_coord())

@@ -15,6 +15,7 @@ use symdyn::parse::parse_scene;
 const EXAMPLES: &[&str] = &[
     "ppp",
     "elbow",
+    "elbow_geared",
     "rpp",
     "scara",
     "stanford",

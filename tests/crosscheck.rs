@@ -88,6 +88,7 @@ fn robot(spec: &[(bool, u8, u8, u8, u8, bool)], modified: bool) -> Robot {
         joints,
         links,
         inputs: Robot::default_inputs(n),
+        drives: Vec::new(),
     }
 }
 

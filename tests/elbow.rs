@@ -34,6 +34,7 @@ fn elbow() -> Robot {
         joints: vec![joint("l1", 1), joint("l2", 2)],
         links: vec![link("m1", "lc1", "l1", "I1"), link("m2", "lc2", "l2", "I2")],
         inputs: Robot::default_inputs(2),
+        drives: Vec::new(),
     }
 }
 

@@ -111,6 +111,7 @@ fn ppp_is_spong_problem_7_7() {
         ],
         links: vec![point(s("m1")), point(s("m2")), point(s("m3"))],
         inputs: vec!["u1".into(), "u2".into(), "u3".into()],
+        drives: Vec::new(),
     };
     let scene = read(BUILTIN_PPP);
     assert_eq!(scene.robot, want);

@@ -2,7 +2,7 @@
 //! Pinocchio's C++ RNEA and CRBA on the same robot, and the reading of what they print.
 //!
 //! Each harness fills 256 pseudo-random states (the same xorshift in every language), calls each
-//! function over them in a loop of `CALLS` calls, seven times, and prints the fastest repetition's
+//! function over them in a loop of `CALLS` calls, `REPS` times, and prints the fastest repetition's
 //! nanoseconds per call (`time tau 83.2`). It also prints the function's value at one fixed state
 //! given by the bench (`value tau 1.5 -0.25 ...`), so the bench holds every implementation to the
 //! nalgebra Newton–Euler before it reports a time: a fast wrong answer is not a result.
@@ -17,7 +17,10 @@ use std::collections::HashMap;
 use std::fmt::Write;
 
 /// Calls per repetition.
-pub const CALLS: u64 = 200_000;
+pub const CALLS: u64 = 100_000;
+
+/// Repetitions; the fastest counts (the least disturbed by other processes).
+pub const REPS: u64 = 21;
 
 /// The functions a harness times (the names printed after `time` and `value`).
 pub const FUNCTIONS: [&str; 2] = ["tau", "M"];
@@ -101,7 +104,7 @@ int main(void) {{
     printf("value M"); for (k = 0; k < {n} * {n}; k++) printf(" %.17g", out[k]); printf("\n");
     {{
         double best = 1e300;
-        for (rep = 0; rep < 7; rep++) {{
+        for (rep = 0; rep < {REPS}; rep++) {{
             double t0 = now(), acc = 0.0, dt;
             for (it = 0; it < CALLS; it++) {{ s = (int)(it & (S - 1)); {prefix}_tau(out, p, Q[s], QD[s], QDD[s]); acc += out[0]; }}
             dt = (now() - t0) / CALLS; sink += acc; if (dt < best) best = dt;
@@ -110,7 +113,7 @@ int main(void) {{
     }}
     {{
         double best = 1e300;
-        for (rep = 0; rep < 7; rep++) {{
+        for (rep = 0; rep < {REPS}; rep++) {{
             double t0 = now(), acc = 0.0, dt;
             for (it = 0; it < CALLS; it++) {{ s = (int)(it & (S - 1)); {prefix}_M(out, p, Q[s]); acc += out[0]; }}
             dt = (now() - t0) / CALLS; sink += acc; if (dt < best) best = dt;
@@ -155,7 +158,7 @@ fn main() {{
     let calls: usize = {CALLS};
     let mut best = f64::INFINITY;
     let mut sink = 0.0;
-    for _ in 0..7 {{
+    for _ in 0..{REPS} {{
         let t0 = Instant::now();
         let mut acc = 0.0;
         for it in 0..calls {{ let s = it & (S - 1); acc += g::tau(&p, black_box(&qs[s]), &qds[s], &qdds[s])[0]; }}
@@ -164,7 +167,7 @@ fn main() {{
     }}
     println!("time tau {{best:.3}}");
     let mut best = f64::INFINITY;
-    for _ in 0..7 {{
+    for _ in 0..{REPS} {{
         let t0 = Instant::now();
         let mut acc = 0.0;
         for it in 0..calls {{ let s = it & (S - 1); acc += g::m(&p, black_box(&qs[s]))[0]; }}
@@ -356,7 +359,7 @@ pub fn pinocchio_harness(
     double sink = 0.0;
     for (int which = 0; which < 2; which++) {{
         double best = 1e300;
-        for (int rep = 0; rep < 7; rep++) {{
+        for (int rep = 0; rep < {REPS}; rep++) {{
             auto t0 = std::chrono::steady_clock::now();
             double acc = 0.0;
             for (long it = 0; it < calls; it++) {{

@@ -164,6 +164,7 @@ pub fn robot_from_json(text: &str) -> Result<Robot, BenchError> {
         joints,
         links,
         inputs: Robot::default_inputs(dof),
+        drives: Vec::new(),
     };
     robot.validate().map_err(|e| bad(e.to_string()))?;
     Ok(robot)

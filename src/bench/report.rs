@@ -400,7 +400,7 @@ fn generated_code(records: &[Record]) -> String {
         }
     }
     if !native.is_empty() {
-        s.push_str("\nTime per call on the numeric PUMA 560 (fastest of 7 loops of 200 000 calls over 256 random ");
+        s.push_str("\nTime per call on the numeric PUMA 560 (fastest of 21 loops of 100 000 calls over 256 random ");
         s.push_str("states; each implementation's values held to the nalgebra Newton–Euler first). Targets: the ");
         s.push_str("generated C's τ under 100 ns and D(q) under 80 ns, the Rust within 1.2× of the C. The factor is ");
         s.push_str("Pinocchio's time / this one, same run.\n\n");

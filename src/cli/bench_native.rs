@@ -10,7 +10,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use symdyn::algebra::{Expr, Rational, Symbol};
-use symdyn::bench::native::{self, State, CALLS};
+use symdyn::bench::native::{self, State, CALLS, REPS};
 use symdyn::bench::record::{Record, Status};
 use symdyn::bench::RobotSpec;
 use symdyn::codegen::{generate, Cost, Lang, Options, What};
@@ -84,7 +84,7 @@ fn records(
             match time {
                 Some(ns) if err < 1e-9 => {
                     rec.seconds = Some(ns * 1e-9);
-                    rec.calls = Some(CALLS * 7);
+                    rec.calls = Some(CALLS * REPS);
                     if let Some(c) = costs.get(k) {
                         rec.mults = Some(c.mults as u64);
                         rec.adds = Some(c.adds as u64);

@@ -63,6 +63,10 @@ pub fn fold(robot: &Robot, values: &BTreeMap<Symbol, Expr>) -> Result<Robot, Cod
             *t = std::array::from_fn(|a| std::array::from_fn(|b| s(&t[a][b])));
         }
     }
+    for d in &mut r.drives {
+        d.rotor = s(&d.rotor);
+        d.viscous = s(&d.viscous);
+    }
     r.validate()?;
     Ok(r)
 }

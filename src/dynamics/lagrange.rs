@@ -6,7 +6,9 @@
 //!   constant);
 //! - `C(q, q̇)` with `c_kj = Σ_i c_ijk q̇_i`;
 //! - `P = −Σ_i m_i gᵀ p_ci` with `g` the gravity vector in frame 0, and `g_k = ∂P/∂q_k`;
-//! - the equations `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k = τ_k`.
+//! - the equations `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k = τ_k`;
+//! - a joint's drive (§7.5): the reflected rotor inertia `r² J_m` on the diagonal of `D`, and viscous
+//!   friction `B q̇_k` added to equation `k`.
 //!
 //! Indices in the API are 0-based (`d[k][j]` is `d_{k+1, j+1}`); printers add one.
 
@@ -105,6 +107,13 @@ impl Lagrange {
                         if !wk.is_exact_zero() && !wj.is_exact_zero() {
                             parts.push(quad(wk, local, wj));
                         }
+                    }
+                }
+                if j == k {
+                    // The motor's rotor, reflected through its gear (Spong §7.5): a constant.
+                    let rotor = robot.drive(k + 1).rotor;
+                    if !rotor.is_zero() {
+                        parts.push(to_poly(&rotor));
                     }
                 }
                 let entry = Poly::sum(&parts);
@@ -209,6 +218,10 @@ impl Lagrange {
                         .map(|(i, j, r)| christoffel[*i][*j][k].mul(r)),
                 );
                 parts.push(g[k].clone());
+                let viscous = robot.drive(k + 1).viscous;
+                if !viscous.is_zero() {
+                    parts.push(to_poly(&viscous).mul(&qds[k]));
+                }
                 Poly::sum(&parts)
             })
             .collect();

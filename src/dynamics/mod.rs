@@ -28,5 +28,5 @@ pub mod scalar;
 pub mod vec3;
 
 pub use derivation::{Derivation, Equation};
-pub use model::{Convention, Joint, JointKind, Link, Robot};
+pub use model::{Convention, Drive, Joint, JointKind, Link, Robot};
 pub use ne_symbolic::Frame;

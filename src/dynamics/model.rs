@@ -63,6 +63,34 @@ pub struct Link {
     pub inertia: Option<[[Expr; 3]; 3]>,
 }
 
+/// A joint's drive: the reflected rotor inertia of its motor and its viscous friction, in the simple
+/// model of Spong, Hutchinson and Vidyasagar, §6.4 and §7.5: a motor of rotor inertia `J_m` behind a
+/// gear of ratio `r` adds `r² J_m q̈_i` to the joint's equation (a constant on the diagonal of D(q);
+/// the gyroscopic coupling of the rotor with the links is neglected, as there), and viscous friction
+/// `B` adds `B q̇_i`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Drive {
+    /// `r² J_m`, the rotor inertia reflected through the gear (zero: no motor stated).
+    pub rotor: Expr,
+    /// `B`, the viscous friction coefficient (zero: none).
+    pub viscous: Expr,
+}
+
+impl Drive {
+    /// No motor, no friction.
+    pub fn none() -> Drive {
+        Drive {
+            rotor: Expr::zero(),
+            viscous: Expr::zero(),
+        }
+    }
+
+    /// Whether the drive adds nothing.
+    pub fn is_none(&self) -> bool {
+        self.rotor.is_zero() && self.viscous.is_zero()
+    }
+}
+
 /// A serial manipulator.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Robot {
@@ -78,6 +106,9 @@ pub struct Robot {
     pub links: Vec<Link>,
     /// Names of the actuated forces/torques, one per joint.
     pub inputs: Vec<String>,
+    /// The joints' drives (rotor inertia, viscous friction), joint `i` at index `i − 1`; empty when no
+    /// joint states one.
+    pub drives: Vec<Drive>,
 }
 
 /// A DH field of a joint.
@@ -186,6 +217,14 @@ pub enum ModelError {
         value: String,
         /// Its magnitude, the probable intent.
         positive: String,
+    },
+    /// Drives that do not pair up with the joints.
+    #[error("{drives} drives for {joints} joints")]
+    DriveCount {
+        /// Drives given.
+        drives: usize,
+        /// Joints.
+        joints: usize,
     },
     /// Wrong number of input names.
     #[error("{names} input names for {joints} joints")]
@@ -371,7 +410,64 @@ impl Robot {
                 constant(format!("the inertia of link {}", i + 1), e)?;
             }
         }
+        if !self.drives.is_empty() && self.drives.len() != self.joints.len() {
+            return Err(ModelError::DriveCount {
+                drives: self.drives.len(),
+                joints: self.joints.len(),
+            });
+        }
+        for (i, d) in self.drives.iter().enumerate() {
+            constant(format!("the rotor inertia of joint {}", i + 1), &d.rotor)?;
+            constant(
+                format!("the viscous friction of joint {}", i + 1),
+                &d.viscous,
+            )?;
+        }
         Ok(())
+    }
+
+    /// Joint `i`'s drive (1-based), [`Drive::none`] when the robot states none.
+    pub fn drive(&self, i: usize) -> Drive {
+        self.drives.get(i - 1).cloned().unwrap_or_else(Drive::none)
+    }
+
+    /// The drive's term in joint `i`'s equation (1-based): `r² J_m q̈_i + B q̇_i`, `None` without a
+    /// drive.
+    pub fn drive_term(&self, i: usize) -> Option<crate::algebra::Poly> {
+        use crate::algebra::{to_poly, Poly};
+        let d = self.drive(i);
+        if d.is_none() {
+            return None;
+        }
+        let k = i as u32;
+        Some(
+            to_poly(&d.rotor)
+                .mul(&Poly::symbol(&Symbol::qdd(k)))
+                .add(&to_poly(&d.viscous).mul(&Poly::symbol(&Symbol::qd(k)))),
+        )
+    }
+
+    /// Every constant expression the robot states (gravity, the joints' fields, the links' masses,
+    /// centres of mass and inertias, the drives), for the symbols a scene uses.
+    pub fn expressions(&self) -> Vec<&Expr> {
+        let mut exprs: Vec<&Expr> = self.gravity.iter().collect();
+        for j in &self.joints {
+            exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
+        }
+        for l in &self.links {
+            exprs.push(&l.mass);
+            exprs.extend(l.com.iter());
+            exprs.extend(l.inertia.iter().flatten().flatten());
+        }
+        for d in &self.drives {
+            exprs.extend([&d.rotor, &d.viscous]);
+        }
+        exprs
+    }
+
+    /// Whether any joint has a motor or friction.
+    pub fn has_drives(&self) -> bool {
+        self.drives.iter().any(|d| !d.is_none())
     }
 
     /// The default input names `tau1..tauN`.

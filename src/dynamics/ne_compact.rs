@@ -263,6 +263,15 @@ pub fn tau_into(
             fi.dot(&jf.axis_local)
         }
         .mul(&jf.rate);
+        // The drive (Spong §7.5): r² J_m q̈_i + B q̇_i, with the motion's rates.
+        let drive = robot.drive(idx + 1);
+        let i = idx as u32 + 1;
+        if !drive.rotor.is_zero() {
+            tau[idx] = tau[idx].add(&to_poly(&drive.rotor).mul(&rate(i, 2)));
+        }
+        if !drive.viscous.is_zero() {
+            tau[idx] = tau[idx].add(&to_poly(&drive.viscous).mul(&rate(i, 1)));
+        }
         f_next = fi;
     }
     tau

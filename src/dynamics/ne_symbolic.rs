@@ -91,6 +91,7 @@ fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) ->
                 qd,
                 qdd,
                 rate: jf.rate.clone(),
+                drive: robot.drive_term(i + 1),
             }
         })
         .collect()

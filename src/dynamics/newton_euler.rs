@@ -50,6 +50,8 @@ pub struct Step<S> {
     pub qdd: S,
     /// The joint's constant rate `∂θ_i/∂q_i` or `∂d_i/∂q_i`.
     pub rate: S,
+    /// The drive's term `r² J_m q̈_i + B q̇_i` added to `τ_i` (Spong §7.5), `None` without a drive.
+    pub drive: Option<S>,
 }
 
 /// Every intermediate quantity of one Newton–Euler run, per link (index `i − 1`).
@@ -213,6 +215,9 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             fi.dot(&st.axis)
         }
         .mul(&st.rate);
+        if let Some(d) = &st.drive {
+            tau[i] = tau[i].add(d);
+        }
         f[i] = fi;
     }
     NewtonEuler {

@@ -174,5 +174,12 @@ pub fn inverse_dynamics(
         f_next = f;
         n_next = m;
     }
+    // The drives (Spong §7.5): r² J_m q̈_i + B q̇_i.
+    for (i, t) in tau.iter_mut().enumerate() {
+        let d = robot.drive(i + 1);
+        if !d.is_none() {
+            *t += ev(&d.rotor)? * qdd[i] + ev(&d.viscous)? * qd[i];
+        }
+    }
     Ok(tau)
 }

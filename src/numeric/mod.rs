@@ -111,18 +111,10 @@ fn fmt_cond(c: &f64) -> String {
 }
 
 /// Every symbol of a robot's scene that is not a coordinate (DH constants, masses, centres of mass,
-/// inertias, gravity), sorted.
+/// inertias, gravity, the drives' rotor inertias and friction), sorted.
 pub fn robot_parameters(robot: &Robot) -> BTreeSet<Symbol> {
-    let mut exprs: Vec<&crate::algebra::Expr> = robot.gravity.iter().collect();
-    for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
-    }
-    for l in &robot.links {
-        exprs.push(&l.mass);
-        exprs.extend(l.com.iter());
-        exprs.extend(l.inertia.iter().flatten().flatten());
-    }
-    exprs
+    robot
+        .expressions()
         .into_iter()
         .flat_map(|e| e.symbols())
         .filter(|s| !s.is_coord())

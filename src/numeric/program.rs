@@ -152,6 +152,7 @@ fn bound_values(
             polys.extend(v.0.iter());
         }
         polys.extend([&st.mass, &st.qd, &st.qdd, &st.rate]);
+        polys.extend(st.drive.iter());
         polys.extend(st.inertia.iter().flat_map(|m| m.0.iter().flatten()));
     }
     let unbound: BTreeSet<Symbol> = parameters(polys)
@@ -221,6 +222,7 @@ fn trace_steps(
                 qd: t.poly(&st.qd)?,
                 qdd: t.poly(&st.qdd)?,
                 rate: t.poly(&st.rate)?,
+                drive: st.drive.as_ref().map(|p| t.poly(p)).transpose()?,
                 rot_in,
             })
         })

@@ -46,17 +46,7 @@ pub(super) fn complete(session: &Session, line: &str) -> Vec<String> {
 /// The names in scope: the scene's symbols, `q_i`, `qd_i`, `qdd_i`, the user's variables.
 fn scope(session: &Session) -> BTreeSet<String> {
     let robot = session.der.robot();
-    let mut exprs: Vec<&crate::algebra::Expr> = robot.gravity.iter().collect();
-    for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
-    }
-    for l in &robot.links {
-        exprs.push(&l.mass);
-        exprs.extend(l.com.iter());
-        if let Some(t) = &l.inertia {
-            exprs.extend(t.iter().flatten());
-        }
-    }
+    let exprs = robot.expressions();
     let mut names: BTreeSet<String> = exprs
         .iter()
         .flat_map(|e| e.symbols())

@@ -62,8 +62,14 @@ pub fn coriolis(c: &[Vec<Vec<Poly>>]) -> Vec<Vec<Poly>> {
         .collect()
 }
 
-/// `τ_k = Σ_j d_kj q̈_j + Σ_{i ≤ j} (2 − δ_ij) c_ijk q̇_i q̇_j + g_k`.
-pub fn equations(d: &[Vec<Poly>], c: Option<&[Vec<Vec<Poly>>]>, g: &[Poly]) -> Vec<Poly> {
+/// `τ_k = Σ_j d_kj q̈_j + Σ_{i ≤ j} (2 − δ_ij) c_ijk q̇_i q̇_j + g_k + f_k`, with `f_k` the joint's
+/// friction term (`B q̇_k`, zero without one).
+pub fn equations(
+    d: &[Vec<Poly>],
+    c: Option<&[Vec<Vec<Poly>>]>,
+    g: &[Poly],
+    friction: &[Poly],
+) -> Vec<Poly> {
     let n = d.len();
     let qd: Vec<Poly> = (1..=n as u32)
         .map(|i| Poly::symbol(&Symbol::qd(i)))
@@ -85,6 +91,7 @@ pub fn equations(d: &[Vec<Poly>], c: Option<&[Vec<Vec<Poly>>]>, g: &[Poly]) -> V
                 }
             }
             parts.push(g[k].clone());
+            parts.extend(friction.get(k).cloned());
             Poly::sum(parts.iter())
         })
         .collect()

@@ -133,7 +133,9 @@ pub fn mass_matrix(robot: &Robot, joints: &[JointFrame], arena: &mut Compact) ->
         let col = j + 1;
         f = name_vec(arena, f, &format!("FD{col}_{col}"));
         nm = name_vec(arena, nm, &format!("ND{col}_{col}"));
-        d[j][j] = arena.name(project(j, &f, &nm), &format!("D{col}_{col}"));
+        // The motor's rotor, reflected through its gear (Spong §7.5), on the diagonal.
+        let rotor = to_poly(&robot.drive(col).rotor);
+        d[j][j] = arena.name(project(j, &f, &nm).add(&rotor), &format!("D{col}_{col}"));
         for k in (1..=j).rev() {
             // From frame k to frame k − 1 (0-based: joint k's frame carries it to link k − 1).
             let jk = &joints[k];

@@ -77,6 +77,7 @@ pub fn tau(robot: &Robot, joints: &[JointFrame], arena: Compact) -> (Compact, Ve
                 qd: Named::new(&a, jf.rate.mul(&Poly::symbol(&Symbol::qd(q)))),
                 qdd: Named::new(&a, jf.rate.mul(&Poly::symbol(&Symbol::qdd(q)))),
                 rate: Named::new(&a, jf.rate.clone()),
+                drive: robot.drive_term(i + 1).map(|p| Named::new(&a, p)),
             }
         })
         .collect();

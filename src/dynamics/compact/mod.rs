@@ -27,7 +27,7 @@ use super::model::Robot;
 use super::ne_compact::{self, Motion};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::compact::Compact;
-use crate::algebra::{Expr, Poly};
+use crate::algebra::{to_poly, Poly, Symbol};
 
 /// The compact dynamics of one robot, every quantity over one arena.
 #[derive(Clone, Debug)]
@@ -75,7 +75,11 @@ impl CompactDynamics {
             christoffel::christoffel(&d, &mut arena)
         };
         let c = christoffel::coriolis(&christoffel);
-        let tau = christoffel::equations(&d, (!d_constant).then_some(&christoffel[..]), &g);
+        let friction: Vec<Poly> = (1..=robot.dof())
+            .map(|k| to_poly(&robot.drive(k).viscous).mul(&Poly::symbol(&Symbol::qd(k as u32))))
+            .collect();
+        let tau =
+            christoffel::equations(&d, (!d_constant).then_some(&christoffel[..]), &g, &friction);
         let tau_ne = ne_compact::tau_into(robot, joints, &mut arena, Motion::Full);
         CompactDynamics {
             arena,
@@ -119,17 +123,7 @@ impl CompactDynamics {
 /// named like them.
 pub fn arena_for(robot: &Robot) -> Compact {
     let mut arena = Compact::new();
-    let mut exprs: Vec<&Expr> = robot.gravity.iter().collect();
-    for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
-    }
-    for l in &robot.links {
-        exprs.push(&l.mass);
-        exprs.extend(l.com.iter());
-        if let Some(t) = &l.inertia {
-            exprs.extend(t.iter().flatten());
-        }
-    }
+    let exprs = robot.expressions();
     let names: Vec<String> = exprs
         .into_iter()
         .flat_map(|e| e.symbols())

@@ -10,7 +10,7 @@ use crate::algebra::{equal, Expr, Symbol};
 use crate::dynamics::facts::Warning;
 use crate::dynamics::inertia::{self, Axis, Tensor};
 use crate::dynamics::model::{check_joint, check_mass, Field, ModelError};
-use crate::dynamics::{Convention, Joint, JointKind, Link, Robot};
+use crate::dynamics::{Convention, Drive, Joint, JointKind, Link, Robot};
 use crate::parse::error::ParseError;
 use crate::parse::grammar::Rule;
 use crate::parse::lower::lower_expr;
@@ -22,7 +22,7 @@ use std::ops::Range;
 const INERTIA_FORMS: &str = "diag(Ixx, Iyy, Izz), a symmetric matrix [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]], a symbol prefix such as `I2` (for I2xx, I2yy, I2zz, I2xy, I2xz, I2yz), or a shape of the link's mass: box(x, y, z), cylinder(r, h, axis), rod(l, axis) or sphere(r)";
 
 /// The fields of a joint, as a message lists them.
-const JOINT_KEYS: &str = "a, alpha, d and theta";
+const JOINT_KEYS: &str = "a, alpha, d and theta, and for its drive gear, rotor and viscous";
 
 /// The fields of a link, as a message lists them.
 const LINK_KEYS: &str = "mass, com and inertia";
@@ -232,6 +232,8 @@ struct JointEntry {
     head: Range<usize>,
     /// The file ranges of its fields' values, in the order of [`Field`].
     fields: [Range<usize>; 4],
+    /// Its drive (rotor inertia reflected through the gear, viscous friction).
+    drive: Drive,
 }
 
 /// A link as stated, with where.
@@ -424,7 +426,42 @@ impl Builder {
             }
         };
         let mut values: [Option<(Expr, Range<usize>)>; 4] = Default::default();
+        // gear, rotor, viscous: the drive's constants with their ranges.
+        let mut drive: [Option<(Expr, Range<usize>)>; 3] = Default::default();
         for f in fields(at, parts)? {
+            let slot = match f.key.as_str() {
+                "gear" => Some(0),
+                "rotor" => Some(1),
+                "viscous" => Some(2),
+                "coulomb" => {
+                    return Err(at.error(
+                        SceneErrorKind::Unsupported {
+                            what: "Coulomb friction".into(),
+                            why: "fc sgn(q̇) is not a polynomial, and symdyn's algebra has no sign function yet; \
+                                  viscous friction (viscous=B) is supported",
+                        },
+                        f.key_span,
+                    ))
+                }
+                _ => None,
+            };
+            if let Some(k) = slot {
+                let Value::Expr(pair) = &f.value else {
+                    return Err(at.error(
+                        SceneErrorKind::WrongValue {
+                            key: ["gear", "rotor", "viscous"][k],
+                            takes: "a constant expression, such as `100` or `Jm2`",
+                        },
+                        f.value_span,
+                    ));
+                };
+                let what = format!(
+                    "the {} of joint {n}",
+                    ["gear ratio", "rotor inertia", "viscous friction"][k]
+                );
+                drive[k] = Some((at.constant(pair, &what)?, f.value_span));
+                continue;
+            }
             let field = match f.key.as_str() {
                 "a" => Field::A,
                 "alpha" => Field::Alpha,
@@ -482,11 +519,32 @@ impl Builder {
         if let Err((field, e)) = check_joint(n, &joint) {
             return Err(at.error(SceneErrorKind::Model(e), fields[field as usize].clone()));
         }
+        let [gear, rotor, viscous] = drive;
+        if let (Some((_, span)), None) = (&gear, &rotor) {
+            return Err(at.error(
+                SceneErrorKind::MissingKey {
+                    what: format!("joint {n}"),
+                    key: "rotor",
+                    hint: "a gear ratio acts on a motor: give its rotor inertia, rotor=Jm (the joint then gets gear^2*Jm)",
+                },
+                span.clone(),
+            ));
+        }
+        let rotor = match (gear, rotor) {
+            (Some((r, _)), Some((jm, _))) => Expr::product([r.clone(), r, jm]),
+            (None, Some((jm, _))) => jm,
+            (_, None) => Expr::zero(),
+        };
+        let drive = Drive {
+            rotor,
+            viscous: viscous.map_or_else(Expr::zero, |(b, _)| b),
+        };
         self.joints.push(JointEntry {
             joint,
             line: at.line,
             head,
             fields: fields.map(|f| at.file(f)),
+            drive,
         });
         Ok(())
     }
@@ -679,6 +737,11 @@ impl Builder {
         let joint_spans: Vec<[Range<usize>; 4]> =
             self.joints.iter().map(|j| j.fields.clone()).collect();
         let first_joint = self.joints[0].head.clone();
+        let drives: Vec<Drive> = if self.joints.iter().any(|j| !j.drive.is_none()) {
+            self.joints.iter().map(|j| j.drive.clone()).collect()
+        } else {
+            Vec::new()
+        };
         let robot = Robot {
             name: self.name.map_or_else(|| "robot".to_string(), |(n, _)| n),
             gravity: self.gravity.map_or_else(default_gravity, |(g, _)| g),
@@ -686,6 +749,7 @@ impl Builder {
             joints: self.joints.into_iter().map(|j| j.joint).collect(),
             links: robot_links,
             inputs,
+            drives,
         };
         // Every rule of `validate` was checked above with a place to point at; a failure here would
         // be a rule added to the model and not yet to the scene.
