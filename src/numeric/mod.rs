@@ -115,7 +115,7 @@ fn fmt_cond(c: &f64) -> String {
 pub fn robot_parameters(robot: &Robot) -> BTreeSet<Symbol> {
     let mut exprs: Vec<&crate::algebra::Expr> = robot.gravity.iter().collect();
     for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
+        exprs.extend(j.exprs());
     }
     for l in &robot.links {
         exprs.push(&l.mass);

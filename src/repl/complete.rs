@@ -48,7 +48,7 @@ fn scope(session: &Session) -> BTreeSet<String> {
     let robot = session.der.robot();
     let mut exprs: Vec<&crate::algebra::Expr> = robot.gravity.iter().collect();
     for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
+        exprs.extend(j.exprs());
     }
     for l in &robot.links {
         exprs.push(&l.mass);

@@ -121,7 +121,7 @@ pub fn arena_for(robot: &Robot) -> Compact {
     let mut arena = Compact::new();
     let mut exprs: Vec<&Expr> = robot.gravity.iter().collect();
     for j in &robot.joints {
-        exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
+        exprs.extend(j.exprs());
     }
     for l in &robot.links {
         exprs.push(&l.mass);
