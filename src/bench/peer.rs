@@ -19,6 +19,7 @@
 //! "ops": 1400000, "terms": 12345}`.
 
 use super::BenchError;
+use crate::dynamics::placement::Origin;
 use crate::dynamics::{Convention, Joint, JointKind, Link, Placement, Robot};
 use crate::numeric::robot_parameters;
 use crate::parse::parse_expr;
@@ -44,10 +45,16 @@ pub fn robot_json(robot: &Robot) -> String {
             });
             if let Some(p) = &j.placement {
                 let list = |e: &[crate::algebra::Expr; 3]| e.iter().map(ascii).collect::<Vec<_>>();
+                let before: Vec<Value> = p
+                    .before
+                    .iter()
+                    .map(|o| json!({"xyz": list(&o.xyz), "rpy": list(&o.rpy)}))
+                    .collect();
                 v["placement"] = json!({
                     "xyz": list(&p.xyz),
                     "rpy": list(&p.rpy),
                     "axis": list(&p.axis),
+                    "before": before,
                 });
             }
             v
@@ -138,6 +145,18 @@ pub fn robot_from_json(text: &str) -> Result<Robot, BenchError> {
                 xyz: exprs3(field(p, "xyz")?, &what("xyz"))?,
                 rpy: exprs3(field(p, "rpy")?, &what("rpy"))?,
                 axis: exprs3(field(p, "axis")?, &what("axis"))?,
+                before: match p.get("before").and_then(Value::as_array) {
+                    Some(list) => list
+                        .iter()
+                        .map(|o| {
+                            Ok(Origin {
+                                xyz: exprs3(field(o, "xyz")?, &what("xyz"))?,
+                                rpy: exprs3(field(o, "rpy")?, &what("rpy"))?,
+                            })
+                        })
+                        .collect::<Result<_, BenchError>>()?,
+                    None => Vec::new(),
+                },
             }),
             None => None,
         };

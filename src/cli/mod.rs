@@ -15,6 +15,7 @@ mod sheet_cmd;
 pub use error::CliError;
 
 use clap::{Parser, Subcommand};
+use symdyn::parse::urdf::UrdfOptions;
 
 /// Exact symbolic equations of motion for serial robot manipulators.
 #[derive(Parser, Debug)]
@@ -23,12 +24,23 @@ pub struct Args {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+    /// URDF input: the first link of the serial chain (default: the tree's root).
+    #[arg(long, global = true, value_name = "LINK")]
+    pub base: Option<String>,
+    /// URDF input: the last link of the serial chain (default: the single leaf below the base).
+    #[arg(long, global = true, value_name = "LINK")]
+    pub tip: Option<String>,
+    /// URDF input: keep decimal angles exactly as written instead of snapping those within 1e-6 of a
+    /// multiple of π/12 … π to it.
+    #[arg(long, global = true)]
+    pub no_snap: bool,
 }
 
 /// The commands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Derive the equations of motion of a scene (default: the built-in PPP arm of Spong et al. 7.7).
+    /// Derive the equations of motion of a scene or URDF file (default: the built-in PPP arm of Spong
+    /// et al. 7.7). Every command that takes a scene also takes a URDF file, told apart by its content.
     Derive {
         /// The scene file.
         scene: Option<String>,
@@ -257,6 +269,11 @@ pub enum Command {
 
 /// Runs one command and returns what it prints.
 pub fn run(args: Args) -> Result<String, CliError> {
+    derive_cmds::set_urdf_options(UrdfOptions {
+        base: args.base,
+        tip: args.tip,
+        no_snap: args.no_snap,
+    });
     match args.command {
         Command::Derive {
             scene,

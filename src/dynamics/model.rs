@@ -7,7 +7,7 @@
 //! its mass, centre of mass and inertia tensor, the gravity vector in frame 0, and the names of the
 //! actuated inputs. Every quantity is an exact [`Expr`]; the joint variable of joint `i` is `q_i`.
 
-pub use super::placement::Placement;
+pub use super::placement::{Origin, Placement};
 use super::placement::{is_unit_axis, AxisError};
 use crate::algebra::{diff, Expr, Symbol};
 use thiserror::Error;
@@ -109,6 +109,9 @@ impl Joint {
         let mut out = vec![&self.a, &self.alpha, &self.d, &self.theta];
         if let Some(p) = &self.placement {
             out.extend(p.xyz.iter().chain(&p.rpy).chain(&p.axis));
+            for o in &p.before {
+                out.extend(o.xyz.iter().chain(&o.rpy));
+            }
         }
         out
     }
@@ -125,6 +128,14 @@ impl Joint {
                 xyz: std::array::from_fn(|k| f(&p.xyz[k])),
                 rpy: std::array::from_fn(|k| f(&p.rpy[k])),
                 axis: std::array::from_fn(|k| f(&p.axis[k])),
+                before: p
+                    .before
+                    .iter()
+                    .map(|o| Origin {
+                        xyz: std::array::from_fn(|k| f(&o.xyz[k])),
+                        rpy: std::array::from_fn(|k| f(&o.rpy[k])),
+                    })
+                    .collect(),
             }),
         }
     }
@@ -490,7 +501,8 @@ impl Robot {
                 if !joint.a.is_zero() || !joint.alpha.is_zero() {
                     return mixed("a placed joint has no DH `a` or `alpha`");
                 }
-                for e in p.xyz.iter().chain(&p.rpy) {
+                let before = p.before.iter().flat_map(|o| o.xyz.iter().chain(&o.rpy));
+                for e in p.xyz.iter().chain(&p.rpy).chain(before) {
                     if let Some(s) = first_coord(e) {
                         return Err(ModelError::TimeDependentParameter {
                             what: format!("the placement of joint {index}"),

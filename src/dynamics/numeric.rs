@@ -110,17 +110,16 @@ pub fn inverse_dynamics(
         let (pre_r, pre_p, after_r, after_p) = match (&j.placement, robot.convention) {
             (Some(pl), _) => {
                 let u = vec3(&pl.axis)?;
-                let [roll, pitch, yaw] = [ev(&pl.rpy[0])?, ev(&pl.rpy[1])?, ev(&pl.rpy[2])?];
                 joint_r = *Rotation3::from_axis_angle(&Unit::new_normalize(u), theta).matrix();
                 joint_p = u * d;
                 axis = u;
-                let fixed = rpy_matrix_f64(roll, pitch, yaw);
-                (
-                    post_r * fixed,
-                    post_p + post_r * vec3(&pl.xyz)?,
-                    Matrix3::identity(),
-                    Vector3::zeros(),
-                )
+                let (mut fr, mut fp) = (post_r, post_p);
+                for o in pl.origins() {
+                    let [roll, pitch, yaw] = [ev(&o.rpy[0])?, ev(&o.rpy[1])?, ev(&o.rpy[2])?];
+                    fp += fr * vec3(&o.xyz)?;
+                    fr *= rpy_matrix_f64(roll, pitch, yaw);
+                }
+                (fr, fp, Matrix3::identity(), Vector3::zeros())
             }
             (None, Convention::Placement) => {
                 (post_r, post_p, Matrix3::identity(), Vector3::zeros())

@@ -33,17 +33,75 @@ pub struct Placement {
     pub rpy: [Expr; 3],
     /// The joint axis, an exact unit vector of rational entries, in the frame after `xyz` and `rpy`.
     pub axis: [Expr; 3],
+    /// Fixed origins that come first, outermost first: URDF fixed joints merged away between the
+    /// previous moving joint (or the base) and this one. Empty in a scene.
+    pub before: Vec<Origin>,
+}
+
+/// A fixed transform `Trans(xyz) Rot(rpy)`, as URDF's `<origin>` states it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Origin {
+    /// The translation (length).
+    pub xyz: [Expr; 3],
+    /// Roll, pitch and yaw (radians): `R = Rz(yaw) Ry(pitch) Rx(roll)`.
+    pub rpy: [Expr; 3],
+}
+
+impl Origin {
+    /// No translation, no rotation.
+    pub fn identity() -> Origin {
+        Origin {
+            xyz: zero3(),
+            rpy: zero3(),
+        }
+    }
+
+    /// Its rotation and translation, exactly.
+    pub fn transform(&self) -> ([[Expr; 3]; 3], [Expr; 3]) {
+        (rpy_matrix(&self.rpy), self.xyz.clone())
+    }
+}
+
+fn zero3() -> [Expr; 3] {
+    [Expr::zero(), Expr::zero(), Expr::zero()]
+}
+
+/// `(R_a R_b, p_a + R_a p_b)`: the transform `b` within the transform `a`.
+pub fn compose(
+    a: &([[Expr; 3]; 3], [Expr; 3]),
+    b: &([[Expr; 3]; 3], [Expr; 3]),
+) -> ([[Expr; 3]; 3], [Expr; 3]) {
+    let r = std::array::from_fn(|i| {
+        std::array::from_fn(|j| Expr::sum((0..3).map(|k| &a.0[i][k] * &b.0[k][j])))
+    });
+    let rp = mat_vec(&a.0, &b.1);
+    (r, std::array::from_fn(|k| &a.1[k] + &rp[k]))
 }
 
 impl Placement {
     /// At the parent's origin, unrotated, about `z`.
     pub fn about_z() -> Placement {
-        let z = || [Expr::zero(), Expr::zero(), Expr::zero()];
         Placement {
-            xyz: z(),
-            rpy: z(),
+            xyz: zero3(),
+            rpy: zero3(),
             axis: [Expr::zero(), Expr::zero(), Expr::one()],
+            before: Vec::new(),
         }
+    }
+
+    /// The origins in order: [`Placement::before`], then the joint's own.
+    pub fn origins(&self) -> impl Iterator<Item = Origin> + '_ {
+        self.before.iter().cloned().chain(std::iter::once(Origin {
+            xyz: self.xyz.clone(),
+            rpy: self.rpy.clone(),
+        }))
+    }
+
+    /// The whole fixed part, `(R, p)`: every origin composed, exactly.
+    pub fn fixed_transform(&self) -> ([[Expr; 3]; 3], [Expr; 3]) {
+        let identity = Origin::identity().transform();
+        self.origins()
+            .fold(identity, |acc, o| compose(&acc, &o.transform()))
     }
 }
 
@@ -162,12 +220,12 @@ pub(crate) fn joint_frame(
     rate: Poly,
 ) -> JointFrame {
     let p = |e: &Expr| to_poly(e);
-    let fixed = rpy_matrix(&placement.rpy);
+    let (fixed, xyz) = placement.fixed_transform();
     let fixed = Mat3(std::array::from_fn(|r| {
         std::array::from_fn(|c| p(&fixed[r][c]))
     }));
     let u = Vec3(std::array::from_fn(|k| p(&placement.axis[k])));
-    let xyz = Vec3(std::array::from_fn(|k| p(&placement.xyz[k])));
+    let xyz = Vec3(std::array::from_fn(|k| p(&xyz[k])));
     let turn = if theta.is_zero() {
         Mat3::identity()
     } else {
@@ -196,6 +254,7 @@ pub fn from_dh(robot: &Robot) -> Robot {
         xyz: [a.clone(), zero(), zero()],
         rpy: [alpha.clone(), zero(), zero()],
         axis: [zero(), zero(), Expr::one()],
+        before: Vec::new(),
     };
     let mut out = robot.clone();
     out.convention = Convention::Placement;

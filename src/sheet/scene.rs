@@ -59,6 +59,24 @@ fn placement_table(der: &Derivation, kinds: &str, vars: &[String]) -> String {
         ));
     }
     out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
+    for (i, j) in robot.joints.iter().enumerate() {
+        let Some(p) = j.placement.as_ref().filter(|p| !p.before.is_empty()) else {
+            continue;
+        };
+        let fixed: Vec<String> = p
+            .before
+            .iter()
+            .map(|o| {
+                let angles: Vec<String> = o.rpy.iter().map(angle).collect();
+                format!("$p = {}$, $({})$", column(&o.xyz), angles.join(", "))
+            })
+            .collect();
+        out.push_str(&format!(
+            "Before joint {}, fixed joints (merged away) place it first by {}.\n",
+            i + 1,
+            fixed.join(", then ")
+        ));
+    }
     out
 }
 

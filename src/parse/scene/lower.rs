@@ -568,6 +568,7 @@ impl Builder {
             xyz: zero(),
             rpy: zero(),
             axis: [Expr::zero(), Expr::zero(), Expr::one()],
+            before: Vec::new(),
         };
         let mut rpy_span = None;
         let what = format!("the placement of joint {n}");
