@@ -274,13 +274,10 @@ fn an_rpy_angle_in_degrees_is_warned_about() {
     let scene =
         parse_scene("joint 1 revolute origin rpy=[90, 0, 0]\nlink 1 mass=m\ngravity [0,0,-g]")
             .unwrap();
-    let w: Vec<String> = scene
-        .warnings
-        .iter()
-        .map(|w| w.render("t.scene"))
-        .collect();
+    let w: Vec<String> = scene.warnings.iter().map(|w| w.render("t.scene")).collect();
     assert!(
-        w.iter().any(|w| w.contains("t.scene:1:29") && w.contains("90")),
+        w.iter()
+            .any(|w| w.contains("t.scene:1:29") && w.contains("90")),
         "{w:?}"
     );
 }

@@ -3,10 +3,10 @@
 //! Warnings go to stderr; the output is the report.
 
 use super::CliError;
+use std::cell::RefCell;
 use symdyn::dynamics::check::{check_with, CheckOptions};
 use symdyn::dynamics::ne_compact::CompactProgram;
 use symdyn::dynamics::{Derivation, Frame, Robot};
-use std::cell::RefCell;
 use symdyn::parse::urdf::UrdfOptions;
 use symdyn::parse::{parse_robot, BUILTIN_PPP};
 use symdyn::print::Style;

@@ -7,8 +7,8 @@
 //! its mass, centre of mass and inertia tensor, the gravity vector in frame 0, and the names of the
 //! actuated inputs. Every quantity is an exact [`Expr`]; the joint variable of joint `i` is `q_i`.
 
-pub use super::placement::{Origin, Placement};
 use super::placement::{is_unit_axis, AxisError};
+pub use super::placement::{Origin, Placement};
 use crate::algebra::{diff, Expr, Symbol};
 use thiserror::Error;
 

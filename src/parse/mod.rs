@@ -11,12 +11,12 @@
 
 mod error;
 pub(crate) mod grammar;
+mod input;
 mod location;
 pub(crate) mod lower;
 mod names;
 pub mod scene;
 pub mod urdf;
-mod input;
 
 use crate::algebra::Expr;
 use grammar::{Grammar, Rule};

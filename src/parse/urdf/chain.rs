@@ -168,10 +168,7 @@ pub(super) fn robot(
         None => match roots.as_slice() {
             [one] => *one,
             _ => {
-                let names: Vec<&str> = roots
-                    .iter()
-                    .map(|&l| file.links[l].name.as_str())
-                    .collect();
+                let names: Vec<&str> = roots.iter().map(|&l| file.links[l].name.as_str()).collect();
                 return Err(UrdfError::new(
                     UrdfErrorKind::SeveralRoots(list(&names)),
                     source,
@@ -230,9 +227,9 @@ pub(super) fn robot(
     // Links riding on the current moving link (or on the base) by fixed joints: the chain's own
     // links, and fixed side branches.
     let visit = |link: usize,
-                     attach: &Transform,
-                     bodies: &mut Vec<Vec<Body>>,
-                     warnings: &mut Vec<SceneWarning>| {
+                 attach: &Transform,
+                 bodies: &mut Vec<Vec<Body>>,
+                 warnings: &mut Vec<SceneWarning>| {
         let mut stack = vec![(link, attach.clone())];
         while let Some((l, t)) = stack.pop() {
             if let Some(list) = bodies.last_mut() {
@@ -289,11 +286,7 @@ pub(super) fn robot(
                     axis: je.axis.clone(),
                     before: std::mem::take(&mut pending),
                 };
-                joints.push(Joint::placed(
-                    kind,
-                    joints.len() as u32 + 1,
-                    placement,
-                ));
+                joints.push(Joint::placed(kind, joints.len() as u32 + 1, placement));
                 inputs.push(je.name.clone());
                 bodies.push(Vec::new());
                 link_spans.push(file.links[child].span.clone());

@@ -34,7 +34,9 @@ pub enum UrdfErrorKind {
         element: &'static str,
     },
     /// A number that does not read as a decimal.
-    #[error("{what}: `{found}` is not a number (URDF numbers are decimals such as `-0.425` or `1e-3`)")]
+    #[error(
+        "{what}: `{found}` is not a number (URDF numbers are decimals such as `-0.425` or `1e-3`)"
+    )]
     NotANumber {
         /// The attribute, in words.
         what: String,
