@@ -65,22 +65,27 @@ fn vec_of(e: &[Expr; 3]) -> Vec3<Poly> {
 pub(crate) fn joint_frame(robot: &Robot, i: usize) -> JointFrame {
     let j = &robot.joints[i - 1];
     let q = Symbol::q(i as u32);
-    let rate = match j.kind {
-        JointKind::Revolute => poly_diff(&p(&j.theta), &q),
-        JointKind::Prismatic => poly_diff(&p(&j.d), &q),
-    };
-    if let Some(placement) = &j.placement {
+    if j.placement.is_some() || robot.convention == Convention::Placement {
+        let rate = match j.kind {
+            JointKind::Revolute => poly_diff(&p(&j.theta), &q),
+            JointKind::Prismatic => poly_diff(&p(&j.d), &q),
+        };
+        // (A placement robot's joint without a placement is refused by `Robot::validate`; it reads
+        // as a joint about z at the parent's origin.)
+        let at_origin = Placement::about_z();
+        let placement = j.placement.as_ref().unwrap_or(&at_origin);
         return placement::joint_frame(j.kind, placement, &j.theta, &j.d, rate);
     }
-    if robot.convention == Convention::Placement {
-        // (Refused by `Robot::validate`; read as a joint about z at the parent's origin.)
-        let at_origin = Placement::about_z();
-        return placement::joint_frame(j.kind, &at_origin, &j.theta, &j.d, rate);
-    }
+    // (The order of these conversions interns the atoms, which orders the terms of every `Poly`
+    // downstream and so the generated code: keep it.)
     let (ct, st) = (p(&Expr::cos(&j.theta)), p(&Expr::sin(&j.theta)));
     let (ca, sa) = (p(&Expr::cos(&j.alpha)), p(&Expr::sin(&j.alpha)));
     let (a, d) = (p(&j.a), p(&j.d));
     let z = Poly::zero;
+    let rate = match j.kind {
+        JointKind::Revolute => poly_diff(&p(&j.theta), &q),
+        JointKind::Prismatic => poly_diff(&d, &q),
+    };
     match robot.convention {
         Convention::Standard => {
             let rot = Mat3([
