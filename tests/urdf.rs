@@ -357,6 +357,7 @@ fn bad_input_names_the_element_and_its_line() {
         ("<robot name=\"x\"><link name=\"a\"><inertial><mass value=\"1\"/></inertial></link></robot>".into(), "t.urdf:1:32: link `a` <inertial> has no <inertia>"),
         ("<robot name=\"x\"><link name=\"a\"/></robot>".into(), "the chain from `a` to `a` has no revolute, continuous or prismatic joint"),
         ("<robot name=\"x\"></robot>".into(), "the robot states no <link>"),
+        (base("<joint name=\"j\" type=\"revolute\"><parent link=\"base\"/><child link=\"a\"/><origin xyz=\"1e99999 0 0\"/></joint>"), "joint `j` <origin> `xyz`: `1e99999` is beyond the range of a URDF number here (at most 60 digits, exponents within ±60)"),
         ("<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/></robot>".into(), "several links have no parent (`a`, `b`)"),
     ];
     for (text, want) in &cases {
@@ -434,4 +435,36 @@ fn every_command_takes_a_urdf_file_by_its_content() {
     // A scene still reads as a scene through the same door.
     let scene = parse_robot(&example("elbow.scene"), &UrdfOptions::default()).unwrap();
     assert_eq!(scene.robot.dof(), 2);
+}
+
+/// Reading never panics: every prefix of the examples, every file with one line removed, and
+/// numbers at the edges give a robot or an error.
+#[test]
+fn reading_never_panics() {
+    let opts = UrdfOptions::default();
+    for text in [example("panda.urdf"), MERGED.to_string()] {
+        let lines: Vec<&str> = text.lines().collect();
+        for k in 0..lines.len() {
+            let without: Vec<&str> = lines
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != k)
+                .map(|(_, l)| *l)
+                .collect();
+            let _ = parse_robot(&without.join("\n"), &opts);
+        }
+        for cut in (0..text.len()).step_by(37) {
+            if text.is_char_boundary(cut) {
+                let _ = parse_robot(&text[..cut], &opts);
+            }
+        }
+    }
+    for value in [
+        "1e60", "-1e-60", "1e300", "1e99999", ".", "-", "1.2.3", "0x10", "NaN", "inf",
+    ] {
+        let text = MERGED.replace("0.3 0 0", &format!("{value} 0 0"));
+        let _ = parse_robot(&text, &opts);
+        let text = MERGED.replace("1.5707963267948966", value);
+        let _ = parse_robot(&text, &opts);
+    }
 }

@@ -43,6 +43,14 @@ pub enum UrdfErrorKind {
         /// The text found.
         found: String,
     },
+    /// A number beyond the exact range read.
+    #[error("{what}: `{found}` is beyond the range of a URDF number here (at most {max} digits, exponents within ±{max})", max = crate::parse::urdf::numbers::MAX_DIGITS)]
+    NumberOutOfRange {
+        /// The attribute, in words.
+        what: String,
+        /// The text found.
+        found: String,
+    },
     /// The wrong count of numbers in an attribute.
     #[error("{what} takes {expected} numbers, but {found} are given")]
     Count {

@@ -16,12 +16,25 @@ pub const SNAP_TOLERANCE: f64 = 1e-6;
 /// The largest denominator `q` of a snapped angle `p/q π`.
 pub const SNAP_MAX_DENOMINATOR: i64 = 12;
 
-/// A decimal with an optional sign (`-0.425`, `+1`, `1e-3`), exactly; `None` if it is none.
+/// The most digits, and the largest exponent magnitude, of a URDF number: a robot's lengths, masses
+/// and inertias need far fewer, and a number past them (`1e99999`) would make every later step cost
+/// what its digits cost.
+pub const MAX_DIGITS: usize = 60;
+
+/// A decimal with an optional sign (`-0.425`, `+1`, `1e-3`), exactly; `None` if it is none or is
+/// beyond [`MAX_DIGITS`].
 pub fn decimal(text: &str) -> Option<Rational> {
     let (negative, digits) = match text.strip_prefix('-') {
         Some(rest) => (true, rest),
         None => (false, text.strip_prefix('+').unwrap_or(text)),
     };
+    let (mantissa, exponent) = match digits.find(['e', 'E']) {
+        Some(i) => (&digits[..i], digits[i + 1..].parse::<i64>().ok()?),
+        None => (digits, 0),
+    };
+    if mantissa.len() > MAX_DIGITS + 1 || exponent.unsigned_abs() > MAX_DIGITS as u64 {
+        return None;
+    }
     let r = Rational::parse_decimal(digits)?;
     Some(if negative { -r } else { r })
 }
@@ -74,6 +87,11 @@ mod tests {
         assert_eq!(decimal("+2"), Rational::new(2, 1));
         assert_eq!(decimal("pi"), None);
         assert_eq!(decimal("--1"), None);
+        assert_eq!(decimal("1e99999"), None);
+        assert_eq!(
+            decimal("1e60"),
+            Some(Rational::parse_decimal("1e60").unwrap())
+        );
     }
 
     #[test]

@@ -143,13 +143,16 @@ impl Reader<'_> {
             match numbers::decimal(word) {
                 Some(r) => out.push(r),
                 None => {
-                    return Err(self.error(
-                        UrdfErrorKind::NotANumber {
-                            what,
-                            found: word.to_string(),
-                        },
-                        span,
-                    ))
+                    let found = word.to_string();
+                    let kind = if word
+                        .parse::<f64>()
+                        .is_ok_and(|_| word.contains(char::is_numeric))
+                    {
+                        UrdfErrorKind::NumberOutOfRange { what, found }
+                    } else {
+                        UrdfErrorKind::NotANumber { what, found }
+                    };
+                    return Err(self.error(kind, span));
                 }
             }
         }
