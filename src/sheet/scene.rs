@@ -33,10 +33,10 @@ fn placement_table(der: &Derivation, kinds: &str, vars: &[String]) -> String {
     let robot = der.robot();
     let mut out = format!(
         "The manipulator \\emph{{{}}} has {} joints ({kinds}), each placed in the frame of the link \
-         before it by a fixed translation $p_i$ and rotation $R_i = \\mathrm{{Rot}}_{{z,\\psi_i}} \
-         \\mathrm{{Rot}}_{{y,\\vartheta_i}} \\mathrm{{Rot}}_{{x,\\varphi_i}}$ (roll $\\varphi_i$, pitch \
+         before it by a fixed translation $p_i$ and rotation $R_i = \\mathrm{{Rot}}_{{z,\\psi_i}} \\allowbreak \
+         \\mathrm{{Rot}}_{{y,\\vartheta_i}} \\allowbreak \\mathrm{{Rot}}_{{x,\\varphi_i}}$ (roll $\\varphi_i$, pitch \
          $\\vartheta_i$, yaw $\\psi_i$), then moved about or along its unit axis $u_i$: \
-         $A_i = \\mathrm{{Trans}}_{{p_i}} R_i \\mathrm{{Rot}}_{{u_i,\\theta_i}} \\mathrm{{Trans}}_{{u_i,d_i}}$, \
+         $A_i = \\mathrm{{Trans}}_{{p_i}} \\allowbreak R_i \\allowbreak \\mathrm{{Rot}}_{{u_i,\\theta_i}} \\allowbreak \\mathrm{{Trans}}_{{u_i,d_i}}$, \
          with {}. Link frame $i$ is the frame of joint $i$ after its motion.\n",
         text(&robot.name),
         robot.dof(),
@@ -123,7 +123,7 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, brief: bool) -> String
             ),
             Convention::Modified | Convention::Placement => (
                 "modified Denavit--Hartenberg convention (Craig): \
-                 $A_i = \\mathrm{Rot}_{x,\\alpha_{i-1}} \\mathrm{Trans}_{x,a_{i-1}} \\mathrm{Rot}_{z,\\theta_i} \\mathrm{Trans}_{z,d_i}$",
+                 $A_i = \\mathrm{Rot}_{x,\\alpha_{i-1}} \\allowbreak \\mathrm{Trans}_{x,a_{i-1}} \\allowbreak \\mathrm{Rot}_{z,\\theta_i} \\allowbreak \\mathrm{Trans}_{z,d_i}$",
                 "$a_{i-1}$",
                 "$\\alpha_{i-1}$",
             ),
