@@ -298,3 +298,33 @@ fn a_robot_built_by_hand_must_not_mix_forms() {
     assert!(e.contains("is not a unit vector"), "{e}");
     let _ = Poly::zero();
 }
+
+/// The UR5 placed by origin and axis in a scene, its URDF and its DH table: one robot, exactly.
+#[test]
+fn the_placed_ur5_scene_is_its_urdf_and_its_dh_table() {
+    let read = |name: &str| {
+        let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+        std::fs::read_to_string(path).expect("example")
+    };
+    let placed = parse_scene(&read("ur5_placed.scene")).unwrap().robot;
+    let urdf = symdyn::parse::urdf::parse_urdf(&read("ur5.urdf"), &Default::default())
+        .unwrap()
+        .robot;
+    let dh = parse_scene(&read("ur5_dh.scene")).unwrap().robot;
+    assert_eq!(
+        placed.links, urdf.links,
+        "the URDF's inertial rotations applied"
+    );
+    let tau = |r: Robot| {
+        Derivation::new(r)
+            .unwrap()
+            .newton_euler(Frame::Body)
+            .tau
+            .clone()
+    };
+    let (a, b, c) = (tau(placed), tau(urdf), tau(dh));
+    for k in 0..6 {
+        assert!(a[k].sub(&b[k]).is_zero(), "τ{} scene vs URDF", k + 1);
+        assert!(a[k].sub(&c[k]).is_zero(), "τ{} scene vs DH", k + 1);
+    }
+}
