@@ -75,6 +75,7 @@ pub fn random_scene(n: usize, convention: Convention, seed: u64) -> String {
     let dh = match convention {
         Convention::Standard => "standard",
         Convention::Modified => "modified",
+        Convention::Placement => return random_placement_scene(n, seed),
     };
     let mut s = format!("robot \"random chain n={n} seed={seed}\"\ngravity {gravity}\ndh {dh}\n");
     let constant = |p: i64, name: String| match p {
@@ -109,6 +110,70 @@ pub fn random_scene(n: usize, convention: Convention, seed: u64) -> String {
         let kind = if revolute { "revolute" } else { "prismatic" };
         s.push_str(&format!(
             "joint {i} {kind} a={a} alpha={alpha} d={d} theta={theta}\n"
+        ));
+    }
+    for i in 1..=n {
+        let mass = if pick(3) == 0 {
+            format!("{}/2", pick(5) + 1)
+        } else {
+            format!("m{i}")
+        };
+        let com: Vec<String> = ["x", "y", "z"]
+            .iter()
+            .map(|c| constant(pick(5), format!("r{c}{i}")))
+            .collect();
+        let inertia = match pick(3) {
+            0 => String::new(),
+            1 => format!(" inertia=I{i}"),
+            _ => format!(
+                " inertia=diag({}/10,{}/10,{}/10)",
+                pick(5) + 1,
+                pick(5) + 1,
+                pick(5) + 1
+            ),
+        };
+        s.push_str(&format!(
+            "link {i} mass={mass} com=[{}]{inertia}\n",
+            com.join(",")
+        ));
+    }
+    s
+}
+
+/// The scene text of a random `n`-joint chain placed as URDF places joints (`origin xyz rpy axis`):
+/// each offset mixes zeros, symbols and small rationals, each angle of `rpy` is `0`, `±π/2`, `π/3` or a
+/// symbol, each axis one of `z`, `−z`, `x`, `y` or `[0, 3/5, 4/5]`; links as in [`random_scene`].
+pub fn random_placement_scene(n: usize, seed: u64) -> String {
+    let mut rng = Rng::new(seed ^ 0x91AC_E5EE_D000_0000);
+    let mut pick = |k: i64| rng.int(0, k - 1);
+    let mut s = format!("robot \"random placed chain n={n} seed={seed}\"\ngravity [0, g/3, -g]\n");
+    let constant = |p: i64, name: String| match p {
+        0 => "0".to_string(),
+        1 | 2 => name,
+        _ => format!("{}/3", p),
+    };
+    for i in 1..=n {
+        let revolute = i == 1 || pick(3) != 0;
+        let xyz: Vec<String> = ["x", "y", "z"]
+            .iter()
+            .map(|c| constant(pick(5), format!("p{c}{i}")))
+            .collect();
+        let rpy: Vec<String> = ["r", "p", "y"]
+            .iter()
+            .map(|c| match pick(6) {
+                0 | 1 => "0".to_string(),
+                2 => "pi/2".to_string(),
+                3 => "-pi/2".to_string(),
+                4 => "pi/3".to_string(),
+                _ => format!("{c}{i}"),
+            })
+            .collect();
+        let axis = ["0,0,1", "0,0,-1", "1,0,0", "0,1,0", "0,3,4"][pick(5) as usize];
+        let kind = if revolute { "revolute" } else { "prismatic" };
+        s.push_str(&format!(
+            "joint {i} {kind} origin xyz=[{}] rpy=[{}] axis=[{axis}]\n",
+            xyz.join(","),
+            rpy.join(",")
         ));
     }
     for i in 1..=n {

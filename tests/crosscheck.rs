@@ -50,6 +50,7 @@ fn robot(spec: &[(bool, u8, u8, u8, u8, bool)], modified: bool) -> Robot {
             alpha: twist(palpha),
             d,
             theta,
+            placement: None,
         });
         let com = [
             constant(pcom, &format!("cx{i}")),

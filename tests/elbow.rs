@@ -19,6 +19,7 @@ fn elbow() -> Robot {
         alpha: Expr::zero(),
         d: Expr::zero(),
         theta: Expr::q(q),
+        placement: None,
     };
     // DH frame i sits at the distal end of link i, x_i along the link: the centre of mass is at
     // lc_i − l_i along x_i.

@@ -34,6 +34,7 @@ fn joint(kind: JointKind, a: Expr, alpha: Expr, d: Expr, theta: Expr) -> Joint {
         alpha,
         d,
         theta,
+        placement: None,
     }
 }
 

@@ -225,6 +225,12 @@ pub fn pinocchio_harness(
     state: &State,
 ) -> Result<String, String> {
     let n = robot.dof();
+    if robot.convention == Convention::Placement {
+        return Err("the harness builds Pinocchio models from DH rows only".into());
+    }
+    if robot.has_drives() {
+        return Err("the harness builds rigid-body models without motors or friction".into());
+    }
     let at = |e: &crate::algebra::Expr, i: usize, qv: f64| -> Result<f64, String> {
         let mut v = values.clone();
         v.insert(Symbol::q(i as u32 + 1), qv);
@@ -279,7 +285,7 @@ pub fn pinocchio_harness(
         let theta = at(&joint.theta, i, 0.0)?;
         // The fixed part of this joint's transform, and where the link's data sit from the joint.
         let (here, body): (Frame, Frame) = match robot.convention {
-            Convention::Standard => {
+            Convention::Standard | Convention::Placement => {
                 let fixed = mul(
                     &mul(&rot_z(theta), &trans(0.0, 0.0, d)),
                     &mul(&trans(a, 0.0, 0.0), &rot_x(alpha)),
@@ -332,7 +338,7 @@ pub fn pinocchio_harness(
             se3(&body)
         );
         placement = match robot.convention {
-            Convention::Standard => body,
+            Convention::Standard | Convention::Placement => body,
             Convention::Modified => trans(0.0, 0.0, 0.0),
         };
     }

@@ -19,7 +19,8 @@
 //! "ops": 1400000, "terms": 12345}`.
 
 use super::BenchError;
-use crate::dynamics::{Convention, Joint, JointKind, Link, Robot};
+use crate::dynamics::placement::Origin;
+use crate::dynamics::{Convention, Joint, JointKind, Link, Placement, Robot};
 use crate::numeric::robot_parameters;
 use crate::parse::parse_expr;
 use crate::print::{to_string, Style};
@@ -35,13 +36,28 @@ pub fn robot_json(robot: &Robot) -> String {
         .joints
         .iter()
         .map(|j| {
-            json!({
+            let mut v = json!({
                 "kind": j.kind.name(),
                 "a": ascii(&j.a),
                 "alpha": ascii(&j.alpha),
                 "d": ascii(&j.d),
                 "theta": ascii(&j.theta),
-            })
+            });
+            if let Some(p) = &j.placement {
+                let list = |e: &[crate::algebra::Expr; 3]| e.iter().map(ascii).collect::<Vec<_>>();
+                let before: Vec<Value> = p
+                    .before
+                    .iter()
+                    .map(|o| json!({"xyz": list(&o.xyz), "rpy": list(&o.rpy)}))
+                    .collect();
+                v["placement"] = json!({
+                    "xyz": list(&p.xyz),
+                    "rpy": list(&p.rpy),
+                    "axis": list(&p.axis),
+                    "before": before,
+                });
+            }
+            v
         })
         .collect();
     let links: Vec<Value> = robot
@@ -65,10 +81,7 @@ pub fn robot_json(robot: &Robot) -> String {
         .collect();
     let v = json!({
         "name": robot.name,
-        "convention": match robot.convention {
-            Convention::Standard => "standard",
-            Convention::Modified => "modified",
-        },
+        "convention": robot.convention.name(),
         "dof": robot.dof(),
         "gravity": robot.gravity.iter().map(ascii).collect::<Vec<_>>(),
         "joints": joints,
@@ -111,6 +124,7 @@ pub fn robot_from_json(text: &str) -> Result<Robot, BenchError> {
     let convention = match field(&v, "convention")?.as_str() {
         Some("standard") => Convention::Standard,
         Some("modified") => Convention::Modified,
+        Some("placement") => Convention::Placement,
         other => return Err(bad(format!("convention {other:?}"))),
     };
     let list = |k: &str| {
@@ -126,12 +140,33 @@ pub fn robot_from_json(text: &str) -> Result<Robot, BenchError> {
             Some("prismatic") => JointKind::Prismatic,
             other => return Err(bad(format!("{}: {other:?}", what("kind")))),
         };
+        let placement = match j.get("placement") {
+            Some(p) => Some(Placement {
+                xyz: exprs3(field(p, "xyz")?, &what("xyz"))?,
+                rpy: exprs3(field(p, "rpy")?, &what("rpy"))?,
+                axis: exprs3(field(p, "axis")?, &what("axis"))?,
+                before: match p.get("before").and_then(Value::as_array) {
+                    Some(list) => list
+                        .iter()
+                        .map(|o| {
+                            Ok(Origin {
+                                xyz: exprs3(field(o, "xyz")?, &what("xyz"))?,
+                                rpy: exprs3(field(o, "rpy")?, &what("rpy"))?,
+                            })
+                        })
+                        .collect::<Result<_, BenchError>>()?,
+                    None => Vec::new(),
+                },
+            }),
+            None => None,
+        };
         joints.push(Joint {
             kind,
             a: expr(field(j, "a")?, &what("a"))?,
             alpha: expr(field(j, "alpha")?, &what("alpha"))?,
             d: expr(field(j, "d")?, &what("d"))?,
             theta: expr(field(j, "theta")?, &what("theta"))?,
+            placement,
         });
     }
     let mut links = Vec::new();

@@ -3,10 +3,12 @@
 //! Warnings go to stderr; the output is the report.
 
 use super::CliError;
+use std::cell::RefCell;
 use symdyn::dynamics::check::{check_with, CheckOptions};
 use symdyn::dynamics::ne_compact::CompactProgram;
 use symdyn::dynamics::{Derivation, Frame, Robot};
-use symdyn::parse::{parse_scene, BUILTIN_PPP};
+use symdyn::parse::urdf::UrdfOptions;
+use symdyn::parse::{parse_robot, BUILTIN_PPP};
 use symdyn::print::Style;
 use symdyn::report::{self, Method};
 
@@ -39,13 +41,29 @@ pub enum FrameArg {
     Inertial,
 }
 
+thread_local! {
+    /// How this run reads a URDF file (`--base`, `--tip`, `--no-snap`), set once per [`super::run`].
+    static URDF_OPTIONS: RefCell<UrdfOptions> = RefCell::new(UrdfOptions::default());
+}
+
+/// Sets how this run reads URDF files.
+pub(super) fn set_urdf_options(opts: UrdfOptions) {
+    URDF_OPTIONS.with(|o| *o.borrow_mut() = opts);
+}
+
+/// How this run reads URDF files.
+pub(super) fn urdf_options() -> UrdfOptions {
+    URDF_OPTIONS.with(|o| o.borrow().clone())
+}
+
 /// Reads and parses the scene, printing its warnings to stderr.
 pub(super) fn load(path: Option<&str>) -> Result<Derivation, CliError> {
     let (name, robot) = load_robot(path)?;
     Derivation::new(robot).map_err(|e| CliError::Input(format!("error: {name}: {e}")))
 }
 
-/// Reads and parses the scene, printing its warnings to stderr: its display name and robot.
+/// Reads and parses the scene or URDF file, printing its warnings to stderr: its display name and
+/// robot.
 pub(super) fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError> {
     let (name, source) = match path {
         Some(p) => (
@@ -57,8 +75,8 @@ pub(super) fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError
         ),
         None => ("<built-in ppp.scene>".to_string(), BUILTIN_PPP.to_string()),
     };
-    let scene =
-        parse_scene(&source).map_err(|e| CliError::Input(format!("error: {}", e.render(&name))))?;
+    let scene = parse_robot(&source, &urdf_options())
+        .map_err(|e| CliError::Input(format!("error: {}", e.render(&name))))?;
     for w in &scene.warnings {
         super::output::stderr_line(&w.render(&name));
     }

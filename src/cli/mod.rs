@@ -18,6 +18,7 @@ mod simulate_cmd;
 pub use error::CliError;
 
 use clap::{Parser, Subcommand};
+use symdyn::parse::urdf::UrdfOptions;
 
 /// Exact symbolic equations of motion for serial robot manipulators.
 #[derive(Parser, Debug)]
@@ -26,14 +27,25 @@ pub struct Args {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+    /// URDF input: the first link of the serial chain (default: the tree's root).
+    #[arg(long, global = true, value_name = "LINK")]
+    pub base: Option<String>,
+    /// URDF input: the last link of the serial chain (default: the single leaf below the base).
+    #[arg(long, global = true, value_name = "LINK")]
+    pub tip: Option<String>,
+    /// URDF input: keep decimal angles exactly as written instead of snapping those within 1e-6 of a
+    /// multiple of π/12 … π to it.
+    #[arg(long, global = true)]
+    pub no_snap: bool,
 }
 
 /// The commands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Derive the equations of motion of a scene (default: the built-in PPP arm of Spong et al. 7.7).
+    /// Derive the equations of motion of a scene or URDF file (default: the built-in PPP arm of Spong
+    /// et al. 7.7). Every command that takes a scene also takes a URDF file, told apart by its content.
     Derive {
-        /// The scene file.
+        /// The scene or URDF file (told apart by its content).
         scene: Option<String>,
         /// The formulation.
         #[arg(long, value_enum, default_value = "lagrange")]
@@ -55,7 +67,7 @@ pub enum Command {
     /// Prove that Euler–Lagrange and Newton–Euler (both frames) agree, that D(q) is symmetric and that
     /// Ḋ − 2C is skew-symmetric; exit non-zero if any claim fails.
     Check {
-        /// The scene file.
+        /// The scene or URDF file (told apart by its content).
         scene: Option<String>,
         /// Prove exactly (expanded canonical forms) while every equation expands within this many
         /// terms (default 1000; 0 always proves at random points).
@@ -68,13 +80,13 @@ pub enum Command {
     /// An interactive session on a scene (default: the built-in PPP arm); reads a script when stdin is
     /// not a terminal.
     Repl {
-        /// The scene file.
+        /// The scene or URDF file (told apart by its content).
         scene: Option<String>,
     },
     /// Write the solution sheet of a scene: a complete LaTeX document (the scene, Euler–Lagrange,
     /// Newton–Euler, and the proof that they agree).
     Sheet {
-        /// The scene file.
+        /// The scene or URDF file (told apart by its content).
         scene: Option<String>,
         /// The formulations.
         #[arg(long, value_enum, default_value = "both")]
@@ -96,7 +108,7 @@ pub enum Command {
     /// Numbers from the derived equations: τ (default), D(q), C(q, q̇), g(q), or the forward dynamics
     /// q̈ = D⁻¹(u − C q̇ − g), for given parameter values and state.
     Eval {
-        /// The scene file.
+        /// The scene or URDF file (told apart by its content).
         scene: Option<String>,
         /// Parameter values name=value, comma-separated (values are expressions: 3/2, 0.4318, pi/2).
         #[arg(long = "set", value_name = "NAME=VALUE,...")]
@@ -126,7 +138,7 @@ pub enum Command {
     /// Generated code: τ, D(q), h, g, C or the forward dynamics q̈ as C, Rust or Python functions of
     /// (p, q, q̇, q̈, u), with their cost in multiplications, additions, sin/cos and divisions.
     Codegen {
-        /// The scene file.
+        /// The scene or URDF file (told apart by its content).
         scene: Option<String>,
         /// The language.
         #[arg(long, value_enum, default_value = "c")]
@@ -303,6 +315,11 @@ pub enum Command {
 
 /// Runs one command and returns what it prints.
 pub fn run(args: Args) -> Result<String, CliError> {
+    derive_cmds::set_urdf_options(UrdfOptions {
+        base: args.base,
+        tip: args.tip,
+        no_snap: args.no_snap,
+    });
     match args.command {
         Command::Derive {
             scene,

@@ -17,7 +17,7 @@ fn load(session: &mut Session, path: &str) -> Result<String, String> {
     let text =
         std::fs::read_to_string(path).map_err(|e| format!("error: cannot read {path}: {e}"))?;
     session
-        .load_scene_text(path, &text)
+        .load_robot_text(path, &text, &super::derive_cmds::urdf_options())
         .map_err(|e| format!("error: {e}"))
 }
 

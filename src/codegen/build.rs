@@ -50,12 +50,7 @@ pub fn fold(robot: &Robot, values: &BTreeMap<Symbol, Expr>) -> Result<Robot, Cod
     let s = |e: &Expr| subs(e, &map).unwrap_or_else(|_| e.clone());
     let mut r = robot.clone();
     r.gravity = std::array::from_fn(|k| s(&robot.gravity[k]));
-    for j in &mut r.joints {
-        j.a = s(&j.a);
-        j.alpha = s(&j.alpha);
-        j.d = s(&j.d);
-        j.theta = s(&j.theta);
-    }
+    r.joints = robot.joints.iter().map(|j| j.map_exprs(s)).collect();
     for l in &mut r.links {
         l.mass = s(&l.mass);
         l.com = std::array::from_fn(|k| s(&l.com[k]));

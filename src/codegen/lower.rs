@@ -38,6 +38,7 @@ struct Lowerer<'a> {
     n: usize,
     atoms: FxHashMap<AtomId, Val>,
     params: FxHashMap<Symbol, u32>,
+    keys: FxHashMap<AtomId, Expr>,
 }
 
 impl Lowerer<'_> {
@@ -137,13 +138,38 @@ impl Lowerer<'_> {
         }
     }
 
+    /// An atom's canonical expression (cached): the order of atoms in the generated code follows it,
+    /// never the process-wide interning order of atom ids, so the code is the same on every run.
+    fn key(&mut self, id: AtomId) -> Expr {
+        self.keys
+            .entry(id)
+            .or_insert_with(|| atom::to_expr(id))
+            .clone()
+    }
+
     fn poly(&mut self, p: &Poly) -> Val {
-        let terms: Vec<Term> = p
+        let mut terms: Vec<(Vec<(Expr, i32)>, Term)> = p
             .terms()
             .iter()
-            .map(|(m, c)| (c.to_f64(), m.factors().to_vec()))
+            .map(|(m, c)| {
+                let mut fs: Vec<(Expr, AtomId, i32)> = m
+                    .factors()
+                    .iter()
+                    .map(|&(id, e)| (self.key(id), id, e))
+                    .collect();
+                fs.sort_by(|a, b| a.0.cmp(&b.0));
+                let key = fs.iter().map(|(k, _, e)| (k.clone(), *e)).collect();
+                (
+                    key,
+                    (
+                        c.to_f64(),
+                        fs.into_iter().map(|(_, id, e)| (id, e)).collect(),
+                    ),
+                )
+            })
             .collect();
-        self.horner(terms)
+        terms.sort_by(|a, b| a.0.cmp(&b.0));
+        self.horner(terms.into_iter().map(|(_, t)| t).collect())
     }
 
     /// Greedy multivariate Horner form: factor out the atom (to the first power) that occurs in most
@@ -165,11 +191,15 @@ impl Lowerer<'_> {
                 }
             }
         }
-        let best = count
+        let mut candidates: Vec<(usize, Expr, AtomId)> = count
             .iter()
             .filter(|(_, &k)| k >= 2)
-            .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
-            .map(|(&id, _)| id);
+            .map(|(&id, &k)| (k, id, 0))
+            .map(|(k, id, _)| (k, self.key(id), id))
+            .collect();
+        // The most frequent atom; among equals the first in the canonical order.
+        candidates.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+        let best = candidates.first().map(|c| c.2);
         let Some(x) = best else {
             let mut acc = Val::k(0.0);
             let mut vals: Vec<Val> = Vec::with_capacity(terms.len());
@@ -280,6 +310,7 @@ pub fn lower(built: &Built) -> Lowered {
         graph: Graph::default(),
         n,
         atoms: FxHashMap::default(),
+        keys: FxHashMap::default(),
         params: built
             .parameters
             .iter()

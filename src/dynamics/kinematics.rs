@@ -6,7 +6,8 @@
 //! `∂p_ci/∂q_j`, exact for either DH convention) and `J_ω,i` (column `j` is the axis of joint `j` times
 //! its rate for a revolute `j ≤ i`, zero otherwise).
 
-use super::model::{Convention, JointKind, Robot};
+use super::model::{Convention, JointKind, Placement, Robot};
+use super::placement;
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::calculus::poly_diff;
 use crate::algebra::{to_poly, Expr, Poly, Symbol};
@@ -21,9 +22,10 @@ pub struct JointFrame {
     /// `o_i` in frame `i−1`.
     pub origin: Vec3<Poly>,
     /// The point of the joint axis where the joint acts, in frame `i−1`: `o_{i−1}` (zero) in standard DH,
-    /// `a_{i−1} x_{i−1}` in modified DH.
+    /// `a_{i−1} x_{i−1}` in modified DH, the placement's `xyz` for a placed joint.
     pub joint_point: Vec3<Poly>,
-    /// The joint axis in frame `i` coordinates: `z_{i−1}` (standard) or `z_i` (modified).
+    /// The joint axis in frame `i` coordinates: `z_{i−1}` (standard), `z_i` (modified) or the
+    /// placement's `axis`.
     pub axis_local: Vec3<Poly>,
     /// `∂θ_i/∂q_i` or `∂d_i/∂q_i`: a non-zero constant, 1 in every ordinary table.
     pub rate: Poly,
@@ -58,15 +60,28 @@ fn vec_of(e: &[Expr; 3]) -> Vec3<Poly> {
     Vec3(std::array::from_fn(|i| p(&e[i])))
 }
 
-/// The local frame of joint `i` (1-based) of the robot.
-/// Joint `i`'s local geometry (1-based) from its DH row, in the robot's convention.
+/// Joint `i`'s local geometry (1-based) from its DH row in the robot's convention, or from its
+/// placement ([`super::placement`]): the one seam through which every method reads the joints.
 pub(crate) fn joint_frame(robot: &Robot, i: usize) -> JointFrame {
     let j = &robot.joints[i - 1];
+    let q = Symbol::q(i as u32);
+    if j.placement.is_some() || robot.convention == Convention::Placement {
+        let rate = match j.kind {
+            JointKind::Revolute => poly_diff(&p(&j.theta), &q),
+            JointKind::Prismatic => poly_diff(&p(&j.d), &q),
+        };
+        // (A placement robot's joint without a placement is refused by `Robot::validate`; it reads
+        // as a joint about z at the parent's origin.)
+        let at_origin = Placement::about_z();
+        let placement = j.placement.as_ref().unwrap_or(&at_origin);
+        return placement::joint_frame(j.kind, placement, &j.theta, &j.d, rate);
+    }
+    // (The order of these conversions interns the atoms, which orders the terms of every `Poly`
+    // downstream and so the generated code: keep it.)
     let (ct, st) = (p(&Expr::cos(&j.theta)), p(&Expr::sin(&j.theta)));
     let (ca, sa) = (p(&Expr::cos(&j.alpha)), p(&Expr::sin(&j.alpha)));
     let (a, d) = (p(&j.a), p(&j.d));
     let z = Poly::zero;
-    let q = Symbol::q(i as u32);
     let rate = match j.kind {
         JointKind::Revolute => poly_diff(&p(&j.theta), &q),
         JointKind::Prismatic => poly_diff(&d, &q),
@@ -103,6 +118,7 @@ pub(crate) fn joint_frame(robot: &Robot, i: usize) -> JointFrame {
                 rate,
             }
         }
+        Convention::Placement => unreachable!("handled above"),
     }
 }
 
@@ -126,6 +142,7 @@ impl Kinematics {
             .map(|i| match robot.convention {
                 Convention::Standard => rot0[i - 1].column(2),
                 Convention::Modified => rot0[i].column(2),
+                Convention::Placement => rot0[i].mul_vec(&joints[i - 1].axis_local),
             })
             .collect();
         let mut rotates = Vec::with_capacity(n);

@@ -2,6 +2,7 @@
 //! Newton–Euler (Spong, Hutchinson and Vidyasagar, *Robot Modeling and Control*, ch. 7).
 //!
 //! - [`model`]: the robot as a scene states it; [`inertia`]: shapes and the parallel-axis theorem.
+//! - [`placement`]: joints placed by `origin xyz rpy` and `axis` (URDF) instead of a DH row.
 //! - [`kinematics`]: transforms, centres of mass, Jacobians.
 //! - [`lagrange`]: `D`, `c_ijk`, `C`, `P`, `g`, the equations.
 //! - [`newton_euler`] (generic over the scalar) and [`ne_symbolic`] (its exact inputs, body or inertial).
@@ -23,10 +24,11 @@ pub mod ne_compact;
 pub mod ne_symbolic;
 pub mod newton_euler;
 pub mod numeric;
+pub mod placement;
 pub mod plausibility;
 pub mod scalar;
 pub mod vec3;
 
 pub use derivation::{Derivation, Equation};
-pub use model::{Convention, Drive, Joint, JointKind, Link, Robot};
+pub use model::{Convention, Drive, Joint, JointKind, Link, Placement, Robot};
 pub use ne_symbolic::Frame;

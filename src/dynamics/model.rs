@@ -1,10 +1,14 @@
 //! The robot model: what a scene states, and nothing computed from it.
 //!
 //! A serial chain of `n` joints in Denavit–Hartenberg form (Spong, Hutchinson and Vidyasagar, *Robot
-//! Modeling and Control*, ch. 3 for standard DH; Craig for modified DH), one rigid link per joint with
+//! Modeling and Control*, ch. 3 for standard DH; Craig for modified DH) or placed as URDF places them
+//! ([`Convention::Placement`]: a fixed `origin xyz rpy` then the motion about an `axis`, see
+//! [`super::placement`]), one rigid link per joint with
 //! its mass, centre of mass and inertia tensor, the gravity vector in frame 0, and the names of the
 //! actuated inputs. Every quantity is an exact [`Expr`]; the joint variable of joint `i` is `q_i`.
 
+use super::placement::{is_unit_axis, AxisError};
+pub use super::placement::{Origin, Placement};
 use crate::algebra::{diff, Expr, Symbol};
 use thiserror::Error;
 
@@ -35,6 +39,21 @@ pub enum Convention {
     /// `A_i = Rot(x,α_{i−1}) Trans(x,a_{i−1}) Rot(z,θ_i) Trans(z,d_i)` (Craig, Khalil); the row of joint
     /// `i` holds `a_{i−1}` and `α_{i−1}`; joint `i` acts about `z_i`.
     Modified,
+    /// No DH table: each joint has a [`Placement`] (URDF's `origin xyz rpy` and `axis`), its motion in
+    /// `θ` (revolute) or `d` (prismatic), `a = α = 0`; joint `i` acts about its axis through the
+    /// placement's origin, and link frame `i` is the joint's frame after its motion.
+    Placement,
+}
+
+impl Convention {
+    /// `standard`, `modified` or `placement`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Convention::Standard => "standard",
+            Convention::Modified => "modified",
+            Convention::Placement => "placement",
+        }
+    }
 }
 
 /// One row of the DH table.
@@ -50,6 +69,76 @@ pub struct Joint {
     pub d: Expr,
     /// Joint angle `θ` (radians); holds `q_i` for a revolute joint.
     pub theta: Expr,
+    /// Where the joint sits in its parent link's frame: `Some` exactly in a
+    /// [`Convention::Placement`] robot (whose `a` and `α` are then zero).
+    pub placement: Option<Placement>,
+}
+
+impl Joint {
+    /// A DH row (no placement).
+    pub fn dh(kind: JointKind, a: Expr, alpha: Expr, d: Expr, theta: Expr) -> Joint {
+        Joint {
+            kind,
+            a,
+            alpha,
+            d,
+            theta,
+            placement: None,
+        }
+    }
+
+    /// A placed joint of `kind` with coordinate `q_index`: `θ = q_i` (revolute) or `d = q_i`
+    /// (prismatic), `a = α = 0`.
+    pub fn placed(kind: JointKind, index: u32, placement: Placement) -> Joint {
+        let (d, theta) = match kind {
+            JointKind::Revolute => (Expr::zero(), Expr::q(index)),
+            JointKind::Prismatic => (Expr::q(index), Expr::zero()),
+        };
+        Joint {
+            kind,
+            a: Expr::zero(),
+            alpha: Expr::zero(),
+            d,
+            theta,
+            placement: Some(placement),
+        }
+    }
+
+    /// Every constant the joint states: `a`, `α`, `d`, `θ` and its placement's entries.
+    pub fn exprs(&self) -> Vec<&Expr> {
+        let mut out = vec![&self.a, &self.alpha, &self.d, &self.theta];
+        if let Some(p) = &self.placement {
+            out.extend(p.xyz.iter().chain(&p.rpy).chain(&p.axis));
+            for o in &p.before {
+                out.extend(o.xyz.iter().chain(&o.rpy));
+            }
+        }
+        out
+    }
+
+    /// The joint with `f` applied to each of its expressions.
+    pub fn map_exprs(&self, f: impl Fn(&Expr) -> Expr) -> Joint {
+        Joint {
+            kind: self.kind,
+            a: f(&self.a),
+            alpha: f(&self.alpha),
+            d: f(&self.d),
+            theta: f(&self.theta),
+            placement: self.placement.as_ref().map(|p| Placement {
+                xyz: std::array::from_fn(|k| f(&p.xyz[k])),
+                rpy: std::array::from_fn(|k| f(&p.rpy[k])),
+                axis: std::array::from_fn(|k| f(&p.axis[k])),
+                before: p
+                    .before
+                    .iter()
+                    .map(|o| Origin {
+                        xyz: std::array::from_fn(|k| f(&o.xyz[k])),
+                        rpy: std::array::from_fn(|k| f(&o.rpy[k])),
+                    })
+                    .collect(),
+            }),
+        }
+    }
 }
 
 /// A link's inertial data, in link frame `i`.
@@ -226,6 +315,22 @@ pub enum ModelError {
         /// Joints.
         joints: usize,
     },
+    /// A joint with a placement in a DH table, or one without in a placement robot.
+    #[error("joint {joint}: {reason}")]
+    MixedPlacement {
+        /// Joint index.
+        joint: usize,
+        /// What is mixed.
+        reason: String,
+    },
+    /// A placement's axis that is no exact unit vector.
+    #[error("joint {joint}: {error}")]
+    Axis {
+        /// Joint index.
+        joint: usize,
+        /// What is wrong with it.
+        error: AxisError,
+    },
     /// Wrong number of input names.
     #[error("{names} input names for {joints} joints")]
     InputCount {
@@ -389,6 +494,7 @@ impl Robot {
         }
         for (i, j) in self.joints.iter().enumerate() {
             check_joint(i + 1, j).map_err(|(_, e)| e)?;
+            self.check_placement(i + 1, j)?;
         }
         let constant = |what: String, e: &Expr| match first_coord(e) {
             Some(s) => Err(ModelError::TimeDependentParameter {
@@ -452,7 +558,7 @@ impl Robot {
     pub fn expressions(&self) -> Vec<&Expr> {
         let mut exprs: Vec<&Expr> = self.gravity.iter().collect();
         for j in &self.joints {
-            exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
+            exprs.extend(j.exprs());
         }
         for l in &self.links {
             exprs.push(&l.mass);
@@ -468,6 +574,57 @@ impl Robot {
     /// Whether any joint has a motor or friction.
     pub fn has_drives(&self) -> bool {
         self.drives.iter().any(|d| !d.is_none())
+    }
+
+    /// A placement exactly in a placement robot, with `a = α = 0`, a constant origin and rotation, and
+    /// an exact unit axis.
+    fn check_placement(&self, index: usize, joint: &Joint) -> Result<(), ModelError> {
+        let mixed = |reason: &str| {
+            Err(ModelError::MixedPlacement {
+                joint: index,
+                reason: reason.to_string(),
+            })
+        };
+        match (&joint.placement, self.convention) {
+            (None, Convention::Placement) => {
+                mixed("the robot's joints are placed by `origin ... axis`, but this one has no placement")
+            }
+            (Some(_), Convention::Standard | Convention::Modified) => mixed(
+                "a joint placed by `origin ... axis` cannot join a DH table: use one form for every joint",
+            ),
+            (None, _) => Ok(()),
+            (Some(p), Convention::Placement) => {
+                if !joint.a.is_zero() || !joint.alpha.is_zero() {
+                    return mixed("a placed joint has no DH `a` or `alpha`");
+                }
+                let before = p.before.iter().flat_map(|o| o.xyz.iter().chain(&o.rpy));
+                for e in p.xyz.iter().chain(&p.rpy).chain(before) {
+                    if let Some(s) = first_coord(e) {
+                        return Err(ModelError::TimeDependentParameter {
+                            what: format!("the placement of joint {index}"),
+                            var: s.ascii_name(),
+                        });
+                    }
+                }
+                if !is_unit_axis(&p.axis) {
+                    let error = match super::placement::normalise_axis(&p.axis) {
+                        Err(e) => e,
+                        Ok(_) => AxisError::NotUnit(
+                            p.axis
+                                .iter()
+                                .map(Expr::to_string)
+                                .collect::<Vec<_>>()
+                                .join(", "),
+                        ),
+                    };
+                    return Err(ModelError::Axis {
+                        joint: index,
+                        error,
+                    });
+                }
+                Ok(())
+            }
+        }
     }
 
     /// The default input names `tau1..tauN`.

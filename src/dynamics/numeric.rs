@@ -4,12 +4,15 @@
 //! Craig's outward/inward Newton–Euler iterations (*Introduction to Robotics*, §6.5) on *joint frames*
 //! (the frame in which joint `i` rotates about or slides along its own z axis), with gravity entered
 //! as an upward acceleration of the base. A standard-DH row becomes a joint frame followed by the fixed
-//! `Trans(x,a) Rot(x,α)`; a modified-DH row is a fixed `Rot(x,α) Trans(x,a)` followed by the joint.
-//! The tests hold the symbolic results to it.
+//! `Trans(x,a) Rot(x,α)`; a modified-DH row is a fixed `Rot(x,α) Trans(x,a)` followed by the joint; a
+//! placed joint (URDF) is a fixed `Trans(xyz) Rot(rpy)` followed by the joint about its own axis
+//! (nalgebra's axis-angle rotation, not the symbolic Rodrigues matrix). The tests hold the symbolic
+//! results to it.
 
 use super::model::{Convention, JointKind, Robot};
+use super::placement::rpy_matrix_f64;
 use crate::algebra::{diff, eval_f64, EvalError, Expr, Symbol};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use std::collections::HashMap;
 use thiserror::Error;
 
@@ -71,9 +74,10 @@ pub fn inverse_dynamics(
     // the joint motion, then the fixed part after the joint.
     struct J {
         revolute: bool,
-        r: Matrix3<f64>,  // R_{i-1}^{i} between joint frames
-        p: Vector3<f64>,  // origin of joint frame i in joint frame i-1
-        pc: Vector3<f64>, // centre of mass in joint frame i
+        axis: Vector3<f64>, // the joint axis in joint frame i
+        r: Matrix3<f64>,    // R_{i-1}^{i} between joint frames
+        p: Vector3<f64>,    // origin of joint frame i in joint frame i-1
+        pc: Vector3<f64>,   // centre of mass in joint frame i
         inertia: Matrix3<f64>,
         mass: f64,
         rate: f64,
@@ -89,8 +93,8 @@ pub fn inverse_dynamics(
             JointKind::Prismatic => &j.d,
         };
         let rate = eval_f64(&diff(var, &qi), &vals)?;
-        let joint_r = rot_z(theta);
-        let joint_p = Vector3::new(0.0, 0.0, d);
+        let (mut joint_r, mut joint_p, mut axis) =
+            (rot_z(theta), Vector3::new(0.0, 0.0, d), Vector3::z());
         let link = &robot.links[i];
         let com = vec3(&link.com)?;
         let inertia = match &link.inertia {
@@ -103,15 +107,33 @@ pub fn inverse_dynamics(
                 ev(e)?;
             }
         }
-        let (pre_r, pre_p, after_r, after_p) = match robot.convention {
-            Convention::Standard => (post_r, post_p, rot_x(alpha), Vector3::new(a, 0.0, 0.0)),
-            Convention::Modified => {
+        let (pre_r, pre_p, after_r, after_p) = match (&j.placement, robot.convention) {
+            (Some(pl), _) => {
+                let u = vec3(&pl.axis)?;
+                joint_r = *Rotation3::from_axis_angle(&Unit::new_normalize(u), theta).matrix();
+                joint_p = u * d;
+                axis = u;
+                let (mut fr, mut fp) = (post_r, post_p);
+                for o in pl.origins() {
+                    let [roll, pitch, yaw] = [ev(&o.rpy[0])?, ev(&o.rpy[1])?, ev(&o.rpy[2])?];
+                    fp += fr * vec3(&o.xyz)?;
+                    fr *= rpy_matrix_f64(roll, pitch, yaw);
+                }
+                (fr, fp, Matrix3::identity(), Vector3::zeros())
+            }
+            (None, Convention::Placement) => {
+                (post_r, post_p, Matrix3::identity(), Vector3::zeros())
+            }
+            (None, Convention::Standard) => {
+                (post_r, post_p, rot_x(alpha), Vector3::new(a, 0.0, 0.0))
+            }
+            (None, Convention::Modified) => {
                 let fr = post_r * rot_x(alpha);
                 let fp = post_p + post_r * Vector3::new(a, 0.0, 0.0);
                 (fr, fp, Matrix3::identity(), Vector3::zeros())
             }
         };
-        // Joint frame i = pre ∘ Rot(z,θ) Trans(z,d), measured from joint frame i−1.
+        // Joint frame i = pre ∘ Rot(axis,θ) Trans(axis,d), measured from joint frame i−1.
         let r = pre_r * joint_r;
         let p = pre_p + pre_r * joint_p;
         // Body frame i = joint frame i ∘ after: express the link's data in the joint frame.
@@ -119,6 +141,7 @@ pub fn inverse_dynamics(
         let inertia_j = after_r * inertia * after_r.transpose();
         joints.push(J {
             revolute: j.kind == JointKind::Revolute,
+            axis,
             r,
             p,
             pc,
@@ -130,11 +153,11 @@ pub fn inverse_dynamics(
         post_p = after_p;
     }
     let g0 = vec3(&robot.gravity)?;
-    let z = Vector3::z();
     let (mut w, mut wd, mut vd) = (Vector3::zeros(), Vector3::zeros(), -g0);
     let mut forces = Vec::with_capacity(n);
     let mut torques = Vec::with_capacity(n);
     for (i, j) in joints.iter().enumerate() {
+        let z = j.axis;
         let rt = j.r.transpose();
         let (rate_d, rate_dd) = (qd[i] * j.rate, qdd[i] * j.rate);
         let vd_new;
@@ -170,7 +193,11 @@ pub fn inverse_dynamics(
             + r_next * n_next
             + j.pc.cross(&forces[i])
             + p_next.cross(&(r_next * f_next));
-        tau[i] = if j.revolute { m.dot(&z) } else { f.dot(&z) } * j.rate;
+        tau[i] = if j.revolute {
+            m.dot(&j.axis)
+        } else {
+            f.dot(&j.axis)
+        } * j.rate;
         f_next = f;
         n_next = m;
     }

@@ -56,8 +56,8 @@ impl Robot {
     }
 }
 
-/// Joint `index`'s constant angles that look like degrees: `alpha`, and `theta` without its joint
-/// variable.
+/// Joint `index`'s constant angles that look like degrees: `alpha`, `theta` without its joint
+/// variable, and a placement's `rpy`.
 pub fn angle_warnings(index: usize, joint: &Joint) -> Vec<Warning> {
     let q = Symbol::q(index as u32);
     let constant_theta = match joint.kind {
@@ -67,8 +67,10 @@ pub fn angle_warnings(index: usize, joint: &Joint) -> Vec<Warning> {
             subs(&joint.theta, &at_zero).unwrap_or_else(|_| Expr::zero())
         }
     };
+    let rpy = joint.placement.iter().flat_map(|p| p.rpy.iter());
     [("alpha", &joint.alpha), ("theta", &constant_theta)]
         .into_iter()
+        .chain(rpy.map(|e| ("rpy", e)))
         .filter_map(|(field, e)| {
             let r = e.as_rational()?;
             // 2π = 6.28318…: beyond 6.2832 the angle is surely more than a full turn.
@@ -224,6 +226,7 @@ mod tests {
                 Expr::zero()
             },
             theta: parse_expr(theta).unwrap(),
+            placement: None,
         };
         let fields = |j: &Joint| -> Vec<(&'static str, String)> {
             angle_warnings(1, j)

@@ -6,14 +6,17 @@
 //! precedence; `error` renders failures with a line, a column and a caret; `scene` reads scenes line by
 //! line, reusing `lower` for every value. Parsing user input never panics: nesting is capped
 //! ([`MAX_DEPTH`]), numbers and exponents are bounded, and every failure is a [`ParseError`] or a
-//! [`SceneError`].
+//! [`SceneError`]. `urdf` reads URDF files into the same [`Scene`]; [`parse_robot`] reads either, told
+//! apart by their content.
 
 mod error;
 pub(crate) mod grammar;
+mod input;
 mod location;
 pub(crate) mod lower;
 mod names;
 pub mod scene;
+pub mod urdf;
 
 use crate::algebra::Expr;
 use grammar::{Grammar, Rule};
@@ -21,6 +24,7 @@ use pest::Parser;
 
 pub use error::{ParseError, ParseErrorKind};
 pub use grammar::Expected;
+pub use input::{parse_robot, InputError};
 pub use scene::{parse_scene, Scene, SceneError, SceneErrorKind, SceneExpected, SceneWarning};
 
 /// The scene the `symdyn` binary reads when given none: Spong et al., Problem 7.7, the 3-link

@@ -24,7 +24,8 @@ pub use error::ReplError;
 
 use crate::algebra::{Expr, Symbol};
 use crate::dynamics::Derivation;
-use crate::parse::{parse_scene, BUILTIN_PPP};
+use crate::parse::urdf::UrdfOptions;
+use crate::parse::{parse_robot, parse_scene, BUILTIN_PPP};
 use crate::print::Style;
 use std::collections::BTreeMap;
 
@@ -87,7 +88,18 @@ impl Session {
     /// Loads a scene from its text (`name` is used in messages), replacing the current one; the user's
     /// variables are kept. The answer names the robot and repeats the scene's warnings.
     pub fn load_scene_text(&mut self, name: &str, text: &str) -> Result<String, ReplError> {
-        let scene = parse_scene(text).map_err(|e| ReplError::Parse(e.render(name)))?;
+        self.load_robot_text(name, text, &UrdfOptions::default())
+    }
+
+    /// [`Session::load_scene_text`] for a scene or a URDF file (told apart by its content), a URDF
+    /// file read with `opts`.
+    pub fn load_robot_text(
+        &mut self,
+        name: &str,
+        text: &str,
+        opts: &UrdfOptions,
+    ) -> Result<String, ReplError> {
+        let scene = parse_robot(text, opts).map_err(|e| ReplError::Parse(e.render(name)))?;
         let der =
             Derivation::new(scene.robot).map_err(|e| ReplError::Math(format!("{name}: {e}")))?;
         let mut out = format!(

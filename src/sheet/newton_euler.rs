@@ -48,7 +48,8 @@ fn moment_formula(convention: Convention) -> &'static str {
             "R^{i}_{i+1} n_{i+1} - f_i \\times r_{i-1,c_i} + (R^{i}_{i+1} f_{i+1}) \\times r_{i,c_i} \
              + I_i \\alpha_i + \\omega_i \\times (I_i \\omega_i)"
         }
-        Convention::Modified => {
+        // A placed joint acts at its placement's origin, o_i for a revolute joint (as in modified DH).
+        Convention::Modified | Convention::Placement => {
             "R^{i}_{i+1} n_{i+1} - f_i \\times r_{i,c_i} + (R^{i}_{i+1} f_{i+1}) \\times (r_{i,c_i} - r_{i,i+1}) \
              + I_i \\alpha_i + \\omega_i \\times (I_i \\omega_i)"
         }
@@ -126,6 +127,8 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
         (Frame::Inertial, Convention::Standard) => "z_{i-1}",
         (Frame::Body, Convention::Modified) => "z^{(i)}_{i}",
         (Frame::Inertial, Convention::Modified) => "z_{i}",
+        (Frame::Body, Convention::Placement) => "u^{(i)}_{i}",
+        (Frame::Inertial, Convention::Placement) => "u_{i}",
     };
     out.push_str(&format!(
         "\\subsection*{{Actuated forces and torques}}\nThe actuated force of a prismatic joint is \
@@ -145,13 +148,14 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
             Frame::Inertial => &kin.axis0[i],
         }
         .scale(&jf.rate);
-        let frame_of_axis = match robot.convention {
-            Convention::Standard => i,
-            Convention::Modified => k,
+        let (letter, frame_of_axis) = match robot.convention {
+            Convention::Standard => ("z", i),
+            Convention::Modified => ("z", k),
+            Convention::Placement => ("u", k),
         };
         let axis_i = match frame {
-            Frame::Body => format!("z^{{({k})}}_{{{frame_of_axis}}}"),
-            Frame::Inertial => format!("z_{{{frame_of_axis}}}"),
+            Frame::Body => format!("{letter}^{{({k})}}_{{{frame_of_axis}}}"),
+            Frame::Inertial => format!("{letter}_{{{frame_of_axis}}}"),
         };
         let (what, vec) = match jf.kind {
             JointKind::Prismatic => ("f", "force"),

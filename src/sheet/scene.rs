@@ -28,6 +28,58 @@ fn column(v: &[Expr]) -> String {
     format!("[{}]^{{T}}", cells.join(", "))
 }
 
+/// The placement table of a robot whose joints are placed as URDF places them (no DH table).
+fn placement_table(der: &Derivation, kinds: &str, vars: &[String]) -> String {
+    let robot = der.robot();
+    let mut out = format!(
+        "The manipulator \\emph{{{}}} has {} joints ({kinds}), each placed in the frame of the link \
+         before it by a fixed translation $p_i$ and rotation $R_i = \\mathrm{{Rot}}_{{z,\\psi_i}} \\allowbreak \
+         \\mathrm{{Rot}}_{{y,\\vartheta_i}} \\allowbreak \\mathrm{{Rot}}_{{x,\\varphi_i}}$ (roll $\\varphi_i$, pitch \
+         $\\vartheta_i$, yaw $\\psi_i$), then moved about or along its unit axis $u_i$: \
+         $A_i = \\mathrm{{Trans}}_{{p_i}} \\allowbreak R_i \\allowbreak \\mathrm{{Rot}}_{{u_i,\\theta_i}} \\allowbreak \\mathrm{{Trans}}_{{u_i,d_i}}$, \
+         with {}. Link frame $i$ is the frame of joint $i$ after its motion.\n",
+        text(&robot.name),
+        robot.dof(),
+        vars.join(", ")
+    );
+    out.push_str(
+        "\\begin{center}\n\\begin{tabular}{ccccc}\n\\toprule\n\
+         Joint & $p_i$ & $(\\varphi_i, \\vartheta_i, \\psi_i)$ & $u_i$ & Type \\\\\n\\midrule\n",
+    );
+    for (i, j) in robot.joints.iter().enumerate() {
+        let Some(p) = &j.placement else { continue };
+        let angles: Vec<String> = p.rpy.iter().map(angle).collect();
+        out.push_str(&format!(
+            "{} & ${}$ & $({})$ & ${}$ & {} \\\\\n",
+            i + 1,
+            column(&p.xyz),
+            angles.join(", "),
+            column(&p.axis),
+            j.kind.name()
+        ));
+    }
+    out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
+    for (i, j) in robot.joints.iter().enumerate() {
+        let Some(p) = j.placement.as_ref().filter(|p| !p.before.is_empty()) else {
+            continue;
+        };
+        let fixed: Vec<String> = p
+            .before
+            .iter()
+            .map(|o| {
+                let angles: Vec<String> = o.rpy.iter().map(angle).collect();
+                format!("$p = {}$, $({})$", column(&o.xyz), angles.join(", "))
+            })
+            .collect();
+        out.push_str(&format!(
+            "Before joint {}, fixed joints (merged away) place it first by {}.\n",
+            i + 1,
+            fixed.join(", then ")
+        ));
+    }
+    out
+}
+
 /// The section; `brief` leaves out the link transforms.
 pub(super) fn section(der: &Derivation, lay: &mut Layout, brief: bool) -> String {
     let robot = der.robot();
@@ -53,43 +105,47 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, brief: bool) -> String
             format!("${var}_{{{}}} = {}$", i + 1, math(value))
         })
         .collect();
-    out.push_str(&format!(
-        "The manipulator \\emph{{{}}} has {n} joints ({kinds}). The joint variables enter the \
-         Denavit--Hartenberg parameters as {}.\n",
-        text(&robot.name),
-        vars.join(", ")
-    ));
-    let (conv, a, alpha) = match robot.convention {
-        Convention::Standard => (
-            "standard Denavit--Hartenberg convention (Spong): \
-             $A_i = \\mathrm{Rot}_{z,\\theta_i} \\mathrm{Trans}_{z,d_i} \\mathrm{Trans}_{x,a_i} \\mathrm{Rot}_{x,\\alpha_i}$",
-            "$a_i$",
-            "$\\alpha_i$",
-        ),
-        Convention::Modified => (
-            "modified Denavit--Hartenberg convention (Craig): \
-             $A_i = \\mathrm{Rot}_{x,\\alpha_{i-1}} \\mathrm{Trans}_{x,a_{i-1}} \\mathrm{Rot}_{z,\\theta_i} \\mathrm{Trans}_{z,d_i}$",
-            "$a_{i-1}$",
-            "$\\alpha_{i-1}$",
-        ),
-    };
-    out.push_str(&format!(
-        "The Denavit--Hartenberg table, in the {conv}, is\n\\begin{{center}}\n\
-         \\begin{{tabular}}{{cccccc}}\n\\toprule\n\
-         Link & {a} & {alpha} & $d_i$ & $\\theta_i$ & Joint \\\\\n\\midrule\n"
-    ));
-    for (i, j) in robot.joints.iter().enumerate() {
+    if robot.convention == Convention::Placement {
+        out.push_str(&placement_table(der, &kinds, &vars));
+    } else {
         out.push_str(&format!(
-            "{} & ${}$ & ${}$ & ${}$ & ${}$ & {} \\\\\n",
-            i + 1,
-            math(&j.a),
-            angle(&j.alpha),
-            math(&j.d),
-            angle(&j.theta),
-            j.kind.name()
+            "The manipulator \\emph{{{}}} has {n} joints ({kinds}). The joint variables enter the \
+             Denavit--Hartenberg parameters as {}.\n",
+            text(&robot.name),
+            vars.join(", ")
         ));
+        let (conv, a, alpha) = match robot.convention {
+            Convention::Standard => (
+                "standard Denavit--Hartenberg convention (Spong): \
+                 $A_i = \\mathrm{Rot}_{z,\\theta_i} \\mathrm{Trans}_{z,d_i} \\mathrm{Trans}_{x,a_i} \\mathrm{Rot}_{x,\\alpha_i}$",
+                "$a_i$",
+                "$\\alpha_i$",
+            ),
+            Convention::Modified | Convention::Placement => (
+                "modified Denavit--Hartenberg convention (Craig): \
+                 $A_i = \\mathrm{Rot}_{x,\\alpha_{i-1}} \\allowbreak \\mathrm{Trans}_{x,a_{i-1}} \\allowbreak \\mathrm{Rot}_{z,\\theta_i} \\allowbreak \\mathrm{Trans}_{z,d_i}$",
+                "$a_{i-1}$",
+                "$\\alpha_{i-1}$",
+            ),
+        };
+        out.push_str(&format!(
+            "The Denavit--Hartenberg table, in the {conv}, is\n\\begin{{center}}\n\
+             \\begin{{tabular}}{{cccccc}}\n\\toprule\n\
+             Link & {a} & {alpha} & $d_i$ & $\\theta_i$ & Joint \\\\\n\\midrule\n"
+        ));
+        for (i, j) in robot.joints.iter().enumerate() {
+            out.push_str(&format!(
+                "{} & ${}$ & ${}$ & ${}$ & ${}$ & {} \\\\\n",
+                i + 1,
+                math(&j.a),
+                angle(&j.alpha),
+                math(&j.d),
+                angle(&j.theta),
+                j.kind.name()
+            ));
+        }
+        out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
     }
-    out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
     out.push_str(
         "The masses and the centres of mass (in the frame of their link, $r_{i,c_i}$) are\n\
          \\begin{center}\n\\begin{tabular}{ccc}\n\\toprule\n\

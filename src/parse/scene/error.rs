@@ -180,6 +180,16 @@ pub enum SceneErrorKind {
     /// A link whose joint is never stated.
     #[error("link {0} has no joint {0}")]
     LinkWithoutJoint(usize),
+    /// A joint placed by `origin ... axis` and a DH row or table in one scene.
+    #[error("{this} cannot share a scene with {other} (line {other_line}): state every joint by a DH row (`a= alpha= d= theta=`), or every joint by `origin xyz=[..] rpy=[..] axis=[..]`")]
+    MixedForms {
+        /// What this line states.
+        this: &'static str,
+        /// What an earlier line stated.
+        other: &'static str,
+        /// That line.
+        other_line: usize,
+    },
     /// A joint whose link is never stated.
     #[error("joint {0} has no link {0}: add a line such as `link {0}  mass=m{0}`")]
     JointWithoutLink(usize),
@@ -496,6 +506,7 @@ pub(crate) fn from_pest(
             Rule::index if context == Context::Link => SceneExpected::LinkNumber,
             Rule::index => SceneExpected::JointNumber,
             Rule::joint_type => SceneExpected::JointType,
+            Rule::origin_keyword => SceneExpected::JointField,
             Rule::input => SceneExpected::InputName,
             Rule::inertia_field | Rule::inertia_key | Rule::plain_field | Rule::key => {
                 if context == Context::Link {

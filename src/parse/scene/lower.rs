@@ -10,7 +10,8 @@ use crate::algebra::{equal, Expr, Symbol};
 use crate::dynamics::facts::Warning;
 use crate::dynamics::inertia::{self, Axis, Tensor};
 use crate::dynamics::model::{check_joint, check_mass, Field, ModelError};
-use crate::dynamics::{Convention, Drive, Joint, JointKind, Link, Robot};
+use crate::dynamics::placement::normalise_axis;
+use crate::dynamics::{Convention, Drive, Joint, JointKind, Link, Placement, Robot};
 use crate::parse::error::ParseError;
 use crate::parse::grammar::Rule;
 use crate::parse::lower::lower_expr;
@@ -23,6 +24,9 @@ const INERTIA_FORMS: &str = "diag(Ixx, Iyy, Izz), a symmetric matrix [[Ixx, Ixy,
 
 /// The fields of a joint, as a message lists them.
 const JOINT_KEYS: &str = "a, alpha, d and theta, and for its drive gear, rotor and viscous";
+
+/// The fields of a placed joint, as a message lists them.
+const PLACED_KEYS: &str = "xyz, rpy and axis (after `origin`)";
 
 /// The fields of a link, as a message lists them.
 const LINK_KEYS: &str = "mass, com and inertia";
@@ -230,7 +234,8 @@ struct JointEntry {
     line: usize,
     /// The file range of `joint N`.
     head: Range<usize>,
-    /// The file ranges of its fields' values, in the order of [`Field`].
+    /// The file ranges of its fields' values, in the order of [`Field`] (of a placed joint: its
+    /// `rpy` for `alpha` and `theta`, its head for `a` and `d`).
     fields: [Range<usize>; 4],
     /// Its drive (rotor inertia reflected through the gear, viscous friction).
     drive: Drive,
@@ -261,6 +266,10 @@ pub(super) struct Builder {
     name: Option<(String, usize)>,
     gravity: Option<([Expr; 3], usize)>,
     convention: Option<(Convention, usize)>,
+    /// The line of the first placed joint (`origin ... axis`).
+    placed: Option<usize>,
+    /// The line of the first DH row.
+    dh_row: Option<usize>,
     joints: Vec<JointEntry>,
     links: Vec<LinkEntry>,
     inputs: Option<InputsEntry>,
@@ -363,7 +372,17 @@ impl Builder {
                 self.gravity = Some((g, at.line));
             }
             Rule::dh => {
-                once(at, &self.convention, "dh", keyword_span)?;
+                once(at, &self.convention, "dh", keyword_span.clone())?;
+                if let Some(other_line) = self.placed {
+                    return Err(at.error(
+                        SceneErrorKind::MixedForms {
+                            this: "a `dh` table",
+                            other: "a joint placed by `origin`",
+                            other_line,
+                        },
+                        keyword_span,
+                    ));
+                }
                 let Some(word) = parts.next() else {
                     return Ok(());
                 };
@@ -397,6 +416,10 @@ impl Builder {
         let (Some(number), Some(kind)) = (parts.next(), parts.next()) else {
             return Ok(());
         };
+        let mut parts = parts.peekable();
+        let origin = parts
+            .next_if(|p| p.as_rule() == Rule::origin_keyword)
+            .map(|p| span(&p));
         let n = index(at, &number, "joint")?;
         let head = at.file(keyword.start..span(&number).end);
         let expected = self.joints.len() + 1;
@@ -425,43 +448,46 @@ impl Builder {
                 ))
             }
         };
-        let mut values: [Option<(Expr, Range<usize>)>; 4] = Default::default();
-        // gear, rotor, viscous: the drive's constants with their ranges.
-        let mut drive: [Option<(Expr, Range<usize>)>; 3] = Default::default();
-        for f in fields(at, parts)? {
-            let slot = match f.key.as_str() {
-                "gear" => Some(0),
-                "rotor" => Some(1),
-                "viscous" => Some(2),
-                "coulomb" => {
-                    return Err(at.error(
-                        SceneErrorKind::Unsupported {
-                            what: "Coulomb friction".into(),
-                            why: "fc sgn(q̇) is not a polynomial, and symdyn's algebra has no sign function yet; \
-                                  viscous friction (viscous=B) is supported",
-                        },
-                        f.key_span,
-                    ))
-                }
-                _ => None,
+        let (fields_read, drive) = self.drive_fields(at, n, fields(at, parts)?)?;
+        let placed_key = fields_read
+            .iter()
+            .find(|f| matches!(f.key.as_str(), "xyz" | "rpy" | "axis"));
+        if origin.is_some() || placed_key.is_some() {
+            let here = origin
+                .clone()
+                .or_else(|| placed_key.map(|f| f.key_span.clone()))
+                .unwrap_or(keyword.clone());
+            let clash = match (&self.convention, self.dh_row) {
+                (Some((_, line)), _) => Some(("a `dh` table", *line)),
+                (None, Some(line)) => Some(("a DH row", line)),
+                (None, None) => None,
             };
-            if let Some(k) = slot {
-                let Value::Expr(pair) = &f.value else {
-                    return Err(at.error(
-                        SceneErrorKind::WrongValue {
-                            key: ["gear", "rotor", "viscous"][k],
-                            takes: "a constant expression, such as `100` or `Jm2`",
-                        },
-                        f.value_span,
-                    ));
-                };
-                let what = format!(
-                    "the {} of joint {n}",
-                    ["gear ratio", "rotor inertia", "viscous friction"][k]
-                );
-                drive[k] = Some((at.constant(pair, &what)?, f.value_span));
-                continue;
+            if let Some((other, other_line)) = clash {
+                return Err(at.error(
+                    SceneErrorKind::MixedForms {
+                        this: "a joint placed by `origin`",
+                        other,
+                        other_line,
+                    },
+                    here,
+                ));
             }
+            self.placed.get_or_insert(at.line);
+            return self.placed_joint(at, n, kind, head, fields_read, drive);
+        }
+        if let Some(other_line) = self.placed {
+            return Err(at.error(
+                SceneErrorKind::MixedForms {
+                    this: "a DH row",
+                    other: "a joint placed by `origin`",
+                    other_line,
+                },
+                keyword.start..span(&number).end,
+            ));
+        }
+        self.dh_row.get_or_insert(at.line);
+        let mut values: [Option<(Expr, Range<usize>)>; 4] = Default::default();
+        for f in fields_read {
             let field = match f.key.as_str() {
                 "a" => Field::A,
                 "alpha" => Field::Alpha,
@@ -513,11 +539,68 @@ impl Builder {
             alpha: alpha.0,
             d: d.0,
             theta: theta.0,
+            placement: None,
         };
         // The fields' ranges, in the order of `Field`.
         let fields = [a.1, alpha.1, d.1, theta.1];
         if let Err((field, e)) = check_joint(n, &joint) {
             return Err(at.error(SceneErrorKind::Model(e), fields[field as usize].clone()));
+        }
+        self.joints.push(JointEntry {
+            joint,
+            line: at.line,
+            head,
+            fields: fields.map(|f| at.file(f)),
+            drive,
+        });
+        Ok(())
+    }
+
+    /// The drive's fields of a joint line (`gear`, `rotor`, `viscous`; `coulomb` refused) taken out of
+    /// `fields`, and the drive they state: `rotor = gear² · Jm`.
+    fn drive_fields<'i>(
+        &self,
+        at: &At<'_>,
+        n: usize,
+        fields: Vec<FieldPair<'i>>,
+    ) -> Result<(Vec<FieldPair<'i>>, Drive), SceneError> {
+        let mut rest = Vec::with_capacity(fields.len());
+        // gear, rotor, viscous: the drive's constants with their ranges.
+        let mut drive: [Option<(Expr, Range<usize>)>; 3] = Default::default();
+        for f in fields {
+            let k = match f.key.as_str() {
+                "gear" => 0,
+                "rotor" => 1,
+                "viscous" => 2,
+                "coulomb" => {
+                    return Err(at.error(
+                        SceneErrorKind::Unsupported {
+                            what: "Coulomb friction".into(),
+                            why: "fc sgn(q̇) is not a polynomial, and symdyn's algebra has no sign function yet; \
+                                  viscous friction (viscous=B) is supported",
+                        },
+                        f.key_span,
+                    ))
+                }
+                _ => {
+                    rest.push(f);
+                    continue;
+                }
+            };
+            let Value::Expr(pair) = &f.value else {
+                return Err(at.error(
+                    SceneErrorKind::WrongValue {
+                        key: ["gear", "rotor", "viscous"][k],
+                        takes: "a constant expression, such as `100` or `Jm2`",
+                    },
+                    f.value_span,
+                ));
+            };
+            let what = format!(
+                "the {} of joint {n}",
+                ["gear ratio", "rotor inertia", "viscous friction"][k]
+            );
+            drive[k] = Some((at.constant(pair, &what)?, f.value_span));
         }
         let [gear, rotor, viscous] = drive;
         if let (Some((_, span)), None) = (&gear, &rotor) {
@@ -539,11 +622,74 @@ impl Builder {
             rotor,
             viscous: viscous.map_or_else(Expr::zero, |(b, _)| b),
         };
+        Ok((rest, drive))
+    }
+
+    /// `joint N type origin xyz=[..] rpy=[..] axis=[..]`: a joint placed as URDF places it (each
+    /// field optional: no offset, no rotation, the axis `z`); the axis normalised exactly.
+    fn placed_joint(
+        &mut self,
+        at: &At<'_>,
+        n: usize,
+        kind: JointKind,
+        head: Range<usize>,
+        fields: Vec<FieldPair<'_>>,
+        drive: Drive,
+    ) -> Result<(), SceneError> {
+        let zero = || [Expr::zero(), Expr::zero(), Expr::zero()];
+        let mut placement = Placement {
+            xyz: zero(),
+            rpy: zero(),
+            axis: [Expr::zero(), Expr::zero(), Expr::one()],
+            before: Vec::new(),
+        };
+        let mut rpy_span = None;
+        let what = format!("the placement of joint {n}");
+        for f in &fields {
+            let (slot, name): (&mut [Expr; 3], &'static str) = match f.key.as_str() {
+                "xyz" => (&mut placement.xyz, "xyz"),
+                "rpy" => (&mut placement.rpy, "rpy"),
+                "axis" => (&mut placement.axis, "axis"),
+                _ => {
+                    return Err(at.error(
+                        SceneErrorKind::UnknownKey {
+                            statement: "placed joint",
+                            key: f.written.to_string(),
+                            known: PLACED_KEYS,
+                        },
+                        f.key_span.clone(),
+                    ))
+                }
+            };
+            let Value::Vector(v) = &f.value else {
+                return Err(at.error(
+                    SceneErrorKind::WrongValue {
+                        key: name,
+                        takes: "a vector [x, y, z]",
+                    },
+                    f.value_span.clone(),
+                ));
+            };
+            *slot = vector3(at, v, f.value_span.clone(), name, &what)?;
+            if name == "rpy" {
+                rpy_span = Some(at.file(f.value_span.clone()));
+            }
+            if name == "axis" {
+                placement.axis = normalise_axis(&placement.axis).map_err(|error| {
+                    at.error(
+                        SceneErrorKind::Model(ModelError::Axis { joint: n, error }),
+                        f.value_span.clone(),
+                    )
+                })?;
+            }
+        }
+        let joint = Joint::placed(kind, n as u32, placement);
+        let angles = rpy_span.clone().unwrap_or_else(|| head.clone());
         self.joints.push(JointEntry {
             joint,
             line: at.line,
-            head,
-            fields: fields.map(|f| at.file(f)),
+            head: head.clone(),
+            fields: [head.clone(), angles.clone(), head, angles],
             drive,
         });
         Ok(())
@@ -745,7 +891,11 @@ impl Builder {
         let robot = Robot {
             name: self.name.map_or_else(|| "robot".to_string(), |(n, _)| n),
             gravity: self.gravity.map_or_else(default_gravity, |(g, _)| g),
-            convention: self.convention.map_or(Convention::Standard, |(c, _)| c),
+            convention: if self.placed.is_some() {
+                Convention::Placement
+            } else {
+                self.convention.map_or(Convention::Standard, |(c, _)| c)
+            },
             joints: self.joints.into_iter().map(|j| j.joint).collect(),
             links: robot_links,
             inputs,
@@ -769,7 +919,7 @@ impl Builder {
                         inertia.clone().unwrap_or_else(|| head.clone())
                     }
                     Warning::AngleInDegrees { joint, field, .. } => {
-                        let f = if *field == "alpha" {
+                        let f = if *field == "alpha" || *field == "rpy" {
                             Field::Alpha
                         } else {
                             Field::Theta

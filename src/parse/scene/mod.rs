@@ -27,6 +27,7 @@
 //! | `gravity [x, y, z]` | gravitational acceleration in frame 0 | `[0, 0, -g]` |
 //! | `dh standard` or `dh modified` | the DH convention ([`Convention`](crate::dynamics::Convention)) | `standard` |
 //! | `joint N revolute\|prismatic a=.. alpha=.. d=.. theta=..` | DH row `N`; all four fields, once each | an error |
+//! | `joint N revolute\|prismatic origin [xyz=[..]] [rpy=[..]] [axis=[..]]` | joint `N` placed as URDF places it ([`placement`](crate::dynamics::placement)): `qN` about or along the axis (exact unit vector, normalised), no `dh` line and no DH row in the same scene | an error |
 //! | `link N mass=.. [com=[x, y, z]] [inertia=..]` | link `N` in frame `N` | an error |
 //! | `inputs name...` | one name per joint for the actuated forces/torques | `tau1 .. tauN` |
 //!
