@@ -117,6 +117,37 @@ fn rk4_at_one_millisecond_conserves_energy_and_explicit_euler_drifts() {
         euler.energy_drift()
     );
     assert!(euler.energy_drift() > 1e3 * rk4.energy_drift());
+    // The Franka Panda (modified DH, full inertia tensors), 7 joints.
+    let panda = robot("panda_dh");
+    let mut sys = System::new(&panda, &values, &[]).unwrap();
+    let q0 = [0.3, -0.5, 0.8, -1.2, -0.4, 1.6, 0.2];
+    let qd0 = [0.5, 0.2, -0.3, 0.4, 0.1, -0.2, 0.3];
+    let rk4 = simulate(
+        &mut sys,
+        &q0,
+        &qd0,
+        &opts(Integrator::Rk4, 5.0, 1e-3),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(
+        rk4.energy_drift() < 1e-5,
+        "Panda RK4 drift {}",
+        rk4.energy_drift()
+    );
+    let euler = simulate(
+        &mut sys,
+        &q0,
+        &qd0,
+        &opts(Integrator::Euler, 5.0, 1e-3),
+        &mut |_| {},
+    )
+    .unwrap();
+    assert!(
+        euler.energy_drift() > 1e3 * rk4.energy_drift(),
+        "Panda Euler drift {}",
+        euler.energy_drift()
+    );
 }
 
 #[test]

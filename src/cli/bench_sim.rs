@@ -8,13 +8,22 @@ use std::time::Instant;
 use symdyn::bench::simulation::{parse_summary, SimPoint, RUNS, T_END};
 
 /// The robots: (name, scene, --set, q0, qd0). Numeric parameters except gravity.
-const ROBOTS: [(&str, &str, &str, &str, &str); 1] = [(
-    "puma560",
-    "examples/puma560.scene",
-    "g=9.81",
-    "0.3,-0.5,0.8,0.2,-0.4,0.6",
-    "0.5,0.2,-0.3,0.4,0.1,-0.2",
-)];
+const ROBOTS: [(&str, &str, &str, &str, &str); 2] = [
+    (
+        "puma560",
+        "examples/puma560.scene",
+        "g=9.81",
+        "0.3,-0.5,0.8,0.2,-0.4,0.6",
+        "0.5,0.2,-0.3,0.4,0.1,-0.2",
+    ),
+    (
+        "panda",
+        "examples/panda_dh.scene",
+        "g=9.81",
+        "0.3,-0.5,0.8,-1.2,-0.4,1.6,0.2",
+        "0.5,0.2,-0.3,0.4,0.1,-0.2,0.3",
+    ),
+];
 
 /// Every run; a run that fails or cannot start is left out and noted.
 pub fn simulation_points(exe: &Path, out: &Path, notes: &mut Vec<String>) -> Vec<SimPoint> {
