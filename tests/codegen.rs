@@ -165,10 +165,14 @@ fn exact(robot: &Robot, parameters: &[Symbol], pt: &Point, what: What) -> Vec<f6
         What::C => cd.c.iter().flatten().collect(),
         What::Qdd => unreachable!("checked through tau"),
     };
+    // Opaque atoms (sgn(q̇_i) of Coulomb friction) take the rates' values.
+    let rates: HashMap<Symbol, Expr> = (0..n)
+        .map(|i| (Symbol::qd(i as u32 + 1), Expr::num(pt.qd[i].clone())))
+        .collect();
     let exact = eval(&cd.arena, &polys, &mut |id| {
         values.get(&id).cloned().or_else(|| match atom::class(id) {
             Class::Param | Class::Coord => None,
-            _ => symdyn::algebra::eval_exact(&atom::to_expr(id), &HashMap::new())
+            _ => symdyn::algebra::eval_exact(&atom::to_expr(id), &rates)
                 .ok()
                 .and_then(|v| v.as_rational().cloned()),
         })
@@ -177,11 +181,14 @@ fn exact(robot: &Robot, parameters: &[Symbol], pt: &Point, what: What) -> Vec<f6
         return v.iter().map(Rational::to_f64).collect();
     }
     let numbers: HashMap<AtomId, f64> = values.iter().map(|(k, v)| (*k, v.to_f64())).collect();
+    let rate_numbers: HashMap<Symbol, f64> = (0..n)
+        .map(|i| (Symbol::qd(i as u32 + 1), pt.qd[i].to_f64()))
+        .collect();
     eval(&cd.arena, &polys, &mut |id| {
         numbers
             .get(&id)
             .copied()
-            .or_else(|| symdyn::algebra::eval_f64(&atom::to_expr(id), &HashMap::new()).ok())
+            .or_else(|| symdyn::algebra::eval_f64(&atom::to_expr(id), &rate_numbers).ok())
     })
     .expect("every leaf has a value")
 }

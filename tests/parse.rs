@@ -260,7 +260,7 @@ fn errors_are_located_and_worded() {
             "exp(x)",
             1,
             1,
-            "unknown function `exp`; the known functions are sin, cos, tan and sqrt",
+            "unknown function `exp`; the known functions are sin, cos, tan, sqrt and sgn",
         ),
         ("1 + foo(x)", 1, 5, "unknown function `foo`"),
         ("m2(x+1)", 1, 1, "for a product, write `m2 (...)`"),
@@ -310,7 +310,7 @@ fn the_caret_lines_up() {
     let e = parse_expr("m1 + foo(q1)").unwrap_err();
     assert_eq!(
         e.to_string(),
-        "line 1, column 6: unknown function `foo`; the known functions are sin, cos, tan and sqrt\n  \
+        "line 1, column 6: unknown function `foo`; the known functions are sin, cos, tan, sqrt and sgn\n  \
          m1 + foo(q1)\n       ^^^"
     );
     // The span is underlined in full, and a combining mark takes no column of its own.

@@ -17,6 +17,8 @@ pub fn derivative_of_fun(f: Func, a: &Expr) -> Expr {
     match f {
         Func::Sin => Expr::cos(a),
         Func::Cos => -Expr::sin(a),
+        // Zero wherever it is defined (a ≠ 0): Coulomb friction is never differentiated in time.
+        Func::Sgn => Expr::zero(),
     }
 }
 

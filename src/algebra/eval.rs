@@ -32,6 +32,17 @@ pub fn eval_f64(e: &Expr, values: &HashMap<Symbol, f64>) -> Result<f64, EvalErro
     Ok(eval_unchecked(e, values))
 }
 
+/// `sgn x`: −1, 0 or 1 (0 at 0, unlike `f64::signum`).
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 fn eval_unchecked(e: &Expr, values: &HashMap<Symbol, f64>) -> f64 {
     match e.kind() {
         Kind::Num(r) => r.to_f64(),
@@ -48,6 +59,7 @@ fn eval_unchecked(e: &Expr, values: &HashMap<Symbol, f64>) -> f64 {
         }),
         Kind::Fun(Func::Sin, a) => eval_unchecked(a, values).sin(),
         Kind::Fun(Func::Cos, a) => eval_unchecked(a, values).cos(),
+        Kind::Fun(Func::Sgn, a) => sign(eval_unchecked(a, values)),
     }
 }
 

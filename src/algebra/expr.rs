@@ -50,6 +50,9 @@ pub enum Func {
     Sin,
     /// Cosine.
     Cos,
+    /// The sign function (`sgn x` = −1, 0 or 1), for Coulomb friction `f_c sgn(q̇)`: an opaque atom of
+    /// the normal form (never expanded), with derivative zero where it is defined.
+    Sgn,
 }
 
 impl Func {
@@ -58,6 +61,7 @@ impl Func {
         match self {
             Func::Sin => "sin",
             Func::Cos => "cos",
+            Func::Sgn => "sgn",
         }
     }
 }
@@ -198,11 +202,29 @@ impl Expr {
         Expr::sin(e).div(&Expr::cos(e))
     }
 
+    /// `sgn(e)`: the sign of a number; `sgn(−x) = −sgn(x)` taken out, so equal signs print equally.
+    pub fn sgn(e: &Expr) -> Expr {
+        if let Kind::Num(r) = e.kind() {
+            return Expr::int(if r.is_zero() {
+                0
+            } else if r.is_negative() {
+                -1
+            } else {
+                1
+            });
+        }
+        if e.reads_negative() {
+            return -Expr::sgn(&-e);
+        }
+        Expr::make(Kind::Fun(Func::Sgn, e.clone()))
+    }
+
     /// `f(e)` for a function.
     pub fn fun(f: Func, e: &Expr) -> Expr {
         match f {
             Func::Sin => Expr::sin(e),
             Func::Cos => Expr::cos(e),
+            Func::Sgn => Expr::sgn(e),
         }
     }
 

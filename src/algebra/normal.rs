@@ -103,6 +103,7 @@ fn collect_bases(e: &Expr, bases: &mut Bases, pi_base: &mut u64) {
         Kind::Mul(_, fs) => fs
             .iter()
             .for_each(|(b, _)| collect_bases(b, bases, pi_base)),
+        Kind::Fun(Func::Sgn, a) => collect_bases(a, bases, pi_base),
         Kind::Fun(_, a) => {
             for (t, k) in a.terms() {
                 if let Some(x) = t.as_symbol() {
@@ -180,6 +181,14 @@ impl Converter {
                     acc = acc.mul(&p);
                 }
                 acc
+            }
+            Kind::Fun(Func::Sgn, a) => {
+                // Opaque, with its argument in normal form (so equal signs are one atom).
+                let e = Expr::sgn(&self.poly(a)?.to_expr());
+                match e.kind() {
+                    Kind::Fun(..) => Poly::atom(atom::other(&e)),
+                    _ => self.poly(&e)?,
+                }
             }
             Kind::Fun(f, a) => self.trig(*f, a)?,
         })
@@ -322,7 +331,7 @@ impl Converter {
         }
         Ok(match f {
             Func::Sin => s,
-            Func::Cos => c,
+            Func::Cos | Func::Sgn => c,
         })
     }
 

@@ -67,6 +67,9 @@ fn exact(r: &Rational) -> Option<(Expr, Expr)> {
 
 /// Builds the canonical `f(arg)`.
 pub(crate) fn canonical_fun(f: Func, arg: &Expr) -> Expr {
+    if f == Func::Sgn {
+        return Expr::sgn(arg);
+    }
     let (mut x, mut r) = split_pi(arg);
     let mut sign = Rational::one();
     if x.reads_negative() {
@@ -103,13 +106,15 @@ pub(crate) fn canonical_fun(f: Func, arg: &Expr) -> Expr {
                 f = Func::Sin;
                 sign = -sign;
             }
+            // Returned above.
+            Func::Sgn => {}
         }
     }
     let value = if x.is_zero() {
         match exact(&r) {
             Some((s, c)) => match f {
                 Func::Sin => s,
-                Func::Cos => c,
+                Func::Cos | Func::Sgn => c,
             },
             None => Expr::fun_unchecked(f, &Expr::pi() * &Expr::num(r)),
         }

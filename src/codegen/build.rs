@@ -61,6 +61,7 @@ pub fn fold(robot: &Robot, values: &BTreeMap<Symbol, Expr>) -> Result<Robot, Cod
     for d in &mut r.drives {
         d.rotor = s(&d.rotor);
         d.viscous = s(&d.viscous);
+        d.coulomb = s(&d.coulomb);
     }
     r.validate()?;
     Ok(r)

@@ -45,7 +45,7 @@ fn reachable(lw: &Lowered, outputs: &[Val]) -> Vec<usize> {
         let ops: [Option<Val>; 2] = match nodes[i] {
             Op::Input(_) => [None, None],
             Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => [Some(a), Some(b)],
-            Op::Neg(a) | Op::Powi(a, _) | Op::Sin(a) | Op::Cos(a) => [Some(a), None],
+            Op::Neg(a) | Op::Powi(a, _) | Op::Sin(a) | Op::Cos(a) | Op::Sgn(a) => [Some(a), None],
         };
         for v in ops.into_iter().flatten() {
             if let Val::N(j) = v {
@@ -142,6 +142,19 @@ impl Spelling {
             Op::Cos(a) => {
                 cost.trig += 1;
                 self.call("cos", &o(a))
+            }
+            // sgn, for Coulomb friction: comparisons, no call.
+            Op::Sgn(a) => {
+                let x = o(a);
+                match self.lang {
+                    Lang::C => format!("(double)(({x} > 0.0) - ({x} < 0.0))"),
+                    Lang::Rust => {
+                        format!(
+                            "(if {x} > 0.0 {{ 1.0 }} else if {x} < 0.0 {{ -1.0 }} else {{ 0.0 }})"
+                        )
+                    }
+                    Lang::Python => format!("float(({x} > 0) - ({x} < 0))"),
+                }
             }
         })
     }

@@ -29,6 +29,7 @@ enum Ins {
     Sin(Arg),
     Cos(Arg),
     Div(Arg, Arg),
+    Sgn(Arg),
 }
 
 fn arg(v: Val) -> Arg {
@@ -74,6 +75,7 @@ impl Compiled {
                 Op::Sin(a) => Ins::Sin(arg(a)),
                 Op::Cos(a) => Ins::Cos(arg(a)),
                 Op::Div(a, b) => Ins::Div(arg(a), arg(b)),
+                Op::Sgn(a) => Ins::Sgn(arg(a)),
             })
             .collect::<Vec<_>>();
         let n = lw.n;
@@ -131,6 +133,7 @@ impl Compiled {
                 Ins::Sin(a) => get(a, regs).sin(),
                 Ins::Cos(a) => get(a, regs).cos(),
                 Ins::Div(a, b) => get(a, regs) / get(b, regs),
+                Ins::Sgn(a) => crate::algebra::eval::sign(get(a, regs)),
             };
             regs[i] = v;
         }

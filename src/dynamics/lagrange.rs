@@ -218,9 +218,9 @@ impl Lagrange {
                         .map(|(i, j, r)| christoffel[*i][*j][k].mul(r)),
                 );
                 parts.push(g[k].clone());
-                let viscous = robot.drive(k + 1).viscous;
-                if !viscous.is_zero() {
-                    parts.push(to_poly(&viscous).mul(&qds[k]));
+                let drive = robot.drive(k + 1);
+                if !drive.is_none() {
+                    parts.push(drive.friction(k as u32 + 1));
                 }
                 Poly::sum(&parts)
             })

@@ -152,17 +152,19 @@ pub struct Link {
     pub inertia: Option<[[Expr; 3]; 3]>,
 }
 
-/// A joint's drive: the reflected rotor inertia of its motor and its viscous friction, in the simple
+/// A joint's drive: the reflected rotor inertia of its motor and its friction, in the simple
 /// model of Spong, Hutchinson and Vidyasagar, §6.4 and §7.5: a motor of rotor inertia `J_m` behind a
 /// gear of ratio `r` adds `r² J_m q̈_i` to the joint's equation (a constant on the diagonal of D(q);
-/// the gyroscopic coupling of the rotor with the links is neglected, as there), and viscous friction
-/// `B` adds `B q̇_i`.
+/// the gyroscopic coupling of the rotor with the links is neglected, as there), viscous friction `B`
+/// adds `B q̇_i`, and Coulomb friction `f_c` adds `f_c sgn(q̇_i)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drive {
     /// `r² J_m`, the rotor inertia reflected through the gear (zero: no motor stated).
     pub rotor: Expr,
     /// `B`, the viscous friction coefficient (zero: none).
     pub viscous: Expr,
+    /// `f_c`, the Coulomb friction force or torque (zero: none).
+    pub coulomb: Expr,
 }
 
 impl Drive {
@@ -171,12 +173,24 @@ impl Drive {
         Drive {
             rotor: Expr::zero(),
             viscous: Expr::zero(),
+            coulomb: Expr::zero(),
         }
+    }
+
+    /// The friction term of joint `i` (1-based): `B q̇_i + f_c sgn(q̇_i)`.
+    pub fn friction(&self, i: u32) -> crate::algebra::Poly {
+        use crate::algebra::{to_poly, Poly};
+        let mut p = to_poly(&self.viscous).mul(&Poly::symbol(&Symbol::qd(i)));
+        if !self.coulomb.is_zero() {
+            let sgn = Expr::sgn(&Expr::sym(Symbol::qd(i)));
+            p = p.add(&to_poly(&self.coulomb).mul(&to_poly(&sgn)));
+        }
+        p
     }
 
     /// Whether the drive adds nothing.
     pub fn is_none(&self) -> bool {
-        self.rotor.is_zero() && self.viscous.is_zero()
+        self.rotor.is_zero() && self.viscous.is_zero() && self.coulomb.is_zero()
     }
 }
 
@@ -528,6 +542,10 @@ impl Robot {
                 format!("the viscous friction of joint {}", i + 1),
                 &d.viscous,
             )?;
+            constant(
+                format!("the Coulomb friction of joint {}", i + 1),
+                &d.coulomb,
+            )?;
         }
         Ok(())
     }
@@ -537,8 +555,8 @@ impl Robot {
         self.drives.get(i - 1).cloned().unwrap_or_else(Drive::none)
     }
 
-    /// The drive's term in joint `i`'s equation (1-based): `r² J_m q̈_i + B q̇_i`, `None` without a
-    /// drive.
+    /// The drive's term in joint `i`'s equation (1-based): `r² J_m q̈_i + B q̇_i + f_c sgn(q̇_i)`,
+    /// `None` without a drive.
     pub fn drive_term(&self, i: usize) -> Option<crate::algebra::Poly> {
         use crate::algebra::{to_poly, Poly};
         let d = self.drive(i);
@@ -549,7 +567,7 @@ impl Robot {
         Some(
             to_poly(&d.rotor)
                 .mul(&Poly::symbol(&Symbol::qdd(k)))
-                .add(&to_poly(&d.viscous).mul(&Poly::symbol(&Symbol::qd(k)))),
+                .add(&d.friction(k)),
         )
     }
 
@@ -566,7 +584,7 @@ impl Robot {
             exprs.extend(l.inertia.iter().flatten().flatten());
         }
         for d in &self.drives {
-            exprs.extend([&d.rotor, &d.viscous]);
+            exprs.extend([&d.rotor, &d.viscous, &d.coulomb]);
         }
         exprs
     }

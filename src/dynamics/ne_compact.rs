@@ -269,8 +269,8 @@ pub fn tau_into(
         if !drive.rotor.is_zero() {
             tau[idx] = tau[idx].add(&to_poly(&drive.rotor).mul(&rate(i, 2)));
         }
-        if !drive.viscous.is_zero() {
-            tau[idx] = tau[idx].add(&to_poly(&drive.viscous).mul(&rate(i, 1)));
+        if motion != Motion::Static {
+            tau[idx] = tau[idx].add(&drive.friction(i));
         }
         f_next = fi;
     }

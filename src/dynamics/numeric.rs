@@ -205,7 +205,8 @@ pub fn inverse_dynamics(
     for (i, t) in tau.iter_mut().enumerate() {
         let d = robot.drive(i + 1);
         if !d.is_none() {
-            *t += ev(&d.rotor)? * qdd[i] + ev(&d.viscous)? * qd[i];
+            let sign = crate::algebra::eval::sign(qd[i]);
+            *t += ev(&d.rotor)? * qdd[i] + ev(&d.viscous)? * qd[i] + ev(&d.coulomb)? * sign;
         }
     }
     Ok(tau)

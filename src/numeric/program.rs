@@ -235,7 +235,7 @@ fn operands(op: Op) -> impl Iterator<Item = Val> {
         Op::Input(_) => (None, None),
         Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) => (Some(a), Some(b)),
         Op::Div(a, b) => (Some(a), Some(b)),
-        Op::Neg(a) | Op::Powi(a, _) | Op::Sin(a) | Op::Cos(a) => (Some(a), None),
+        Op::Neg(a) | Op::Powi(a, _) | Op::Sin(a) | Op::Cos(a) | Op::Sgn(a) => (Some(a), None),
     };
     a.into_iter().chain(b)
 }
@@ -362,6 +362,8 @@ fn emit(graph: &Graph, outputs: &[Val], dof: usize) -> Option<Program> {
             }
             // The register program has no division or root: such a graph is not a τ program.
             Op::Div(..) => return None,
+            // Nor a sign: Coulomb friction is evaluated by the tape instead.
+            Op::Sgn(..) => return None,
         }
     }
     // Fused products are not computed on their own; `sin`/`cos` and powers of inputs go first.

@@ -30,6 +30,8 @@ enum Instr {
     Mul { a: Reg, b: Reg, dst: Reg },
     /// `dst = a^k`.
     Powi { a: Reg, k: i32, dst: Reg },
+    /// `dst = sgn a`.
+    Sgn { a: Reg, dst: Reg },
     /// `dst = c + Σ coef · reg` over `terms[start..end]`.
     Sum {
         c: f64,
@@ -193,12 +195,19 @@ impl Builder {
                     self.sum(0.0, &[(c.to_f64(), acc)])
                 }
             }
+            Kind::Fun(Func::Sgn, a) => {
+                let arg = self.expr(a);
+                let pc = self.per_call[arg as usize];
+                let dst = self.fresh(pc);
+                self.emit(pc, Instr::Sgn { a: arg, dst });
+                dst
+            }
             Kind::Fun(f, a) => {
                 let arg = self.expr(a);
                 let (s, c) = self.sin_cos(arg);
                 match f {
                     Func::Sin => s,
-                    Func::Cos => c,
+                    Func::Cos | Func::Sgn => c,
                 }
             }
         };
@@ -319,6 +328,9 @@ fn run(instrs: &[Instr], terms: &[(f64, Reg)], regs: &mut [f64]) {
             }
             Instr::Mul { a, b, dst } => regs[dst as usize] = regs[a as usize] * regs[b as usize],
             Instr::Powi { a, k, dst } => regs[dst as usize] = regs[a as usize].powi(k),
+            Instr::Sgn { a, dst } => {
+                regs[dst as usize] = crate::algebra::eval::sign(regs[a as usize])
+            }
             Instr::Sum { c, start, end, dst } => {
                 let mut acc = c;
                 for &(k, r) in &terms[start as usize..end as usize] {

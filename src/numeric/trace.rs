@@ -64,6 +64,8 @@ pub(crate) enum Op {
     Cos(Val),
     /// `a / b` (generated code's solves only; `compile_tau` never records one).
     Div(Val, Val),
+    /// `sgn a` (Coulomb friction).
+    Sgn(Val),
 }
 
 /// The recorded DAG; nodes are in creation order, which is a topological order.
@@ -219,6 +221,8 @@ impl Graph {
             (Func::Cos, Some(x)) => Val::k(x.cos()),
             (Func::Sin, None) => self.node(Op::Sin(a)),
             (Func::Cos, None) => self.node(Op::Cos(a)),
+            (Func::Sgn, Some(x)) => Val::k(crate::algebra::eval::sign(x)),
+            (Func::Sgn, None) => self.node(Op::Sgn(a)),
         }
     }
 }

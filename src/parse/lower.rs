@@ -307,6 +307,7 @@ fn apply(pair: Pair<'_, Rule>, function: Function, arg: Spanned) -> Lowered {
     let value = match function {
         Function::Sin => Ok(Expr::sin(&arg.expr)),
         Function::Cos => Ok(Expr::cos(&arg.expr)),
+        Function::Sgn => Ok(Expr::sgn(&arg.expr)),
         Function::Tan => Expr::tan(&arg.expr),
         Function::Sqrt => Expr::sqrt(&arg.expr).map_err(|e| match e {
             // The user's own text reads better than the core's canonical form of it.

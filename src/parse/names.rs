@@ -18,14 +18,17 @@ pub(crate) enum Function {
     Tan,
     /// `sqrt(r)` of a rational number.
     Sqrt,
+    /// `sgn(e)`, the sign (Coulomb friction).
+    Sgn,
 }
 
 /// The known functions by name, in the order error messages list them.
-pub(crate) const FUNCTIONS: [(&str, Function); 4] = [
+pub(crate) const FUNCTIONS: [(&str, Function); 5] = [
     ("sin", Function::Sin),
     ("cos", Function::Cos),
     ("tan", Function::Tan),
     ("sqrt", Function::Sqrt),
+    ("sgn", Function::Sgn),
 ];
 
 /// The function called `name`, if there is one.
@@ -33,7 +36,7 @@ pub(crate) fn function(name: &str) -> Option<Function> {
     FUNCTIONS.iter().find(|(n, _)| *n == name).map(|&(_, f)| f)
 }
 
-/// The known functions' names for a message: "sin, cos, tan and sqrt".
+/// The known functions' names for a message: "sin, cos, tan, sqrt and sgn".
 pub(crate) fn function_list() -> String {
     let names: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
     match names.split_last() {
@@ -127,7 +130,7 @@ mod tests {
 
     #[test]
     fn function_list_reads_as_prose() {
-        assert_eq!(function_list(), "sin, cos, tan and sqrt");
+        assert_eq!(function_list(), "sin, cos, tan, sqrt and sgn");
         assert_eq!(function("tan"), Some(Function::Tan));
         assert_eq!(function("exp"), None);
     }

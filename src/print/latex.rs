@@ -121,6 +121,7 @@ fn function(f: Func, arg: &Expr, exp: i64, guarded: bool) -> String {
     let name = match f {
         Func::Sin => "\\sin",
         Func::Cos => "\\cos",
+        Func::Sgn => "\\operatorname{sgn}",
     };
     let power = if exp == 1 {
         String::new()

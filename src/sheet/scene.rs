@@ -164,16 +164,18 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, brief: bool) -> String
         out.push_str(
             "The joints are driven through gears (the simple model of Spong et al., \\S 6.4 and \\S 7.5): \
              the rotor inertia reflected through the gear, $r_i^2 J_{m_i}$, is added to $d_{ii}$, and viscous \
-             friction $B_i \\dot q_i$ to equation $i$; the gyroscopic coupling of the rotors is neglected.\n\
-             \\begin{center}\n\\begin{tabular}{ccc}\n\\toprule\n\
-             Joint & Rotor inertia $r_i^2 J_{m_i}$ & Viscous friction $B_i$ \\\\\n\\midrule\n",
+             friction $B_i \\dot q_i$ and Coulomb friction $f_{c,i} \\operatorname{sgn}(\\dot q_i)$ to equation $i$; \
+             the gyroscopic coupling of the rotors is neglected.\n\
+             \\begin{center}\n\\begin{tabular}{cccc}\n\\toprule\n\
+             Joint & Rotor inertia $r_i^2 J_{m_i}$ & Viscous friction $B_i$ & Coulomb friction $f_{c,i}$ \\\\\n\\midrule\n",
         );
         for i in 1..=n {
             let d = robot.drive(i);
             out.push_str(&format!(
-                "{i} & ${}$ & ${}$ \\\\\n",
+                "{i} & ${}$ & ${}$ & ${}$ \\\\\n",
                 math(&d.rotor),
-                math(&d.viscous)
+                math(&d.viscous),
+                math(&d.coulomb)
             ));
         }
         out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");

@@ -27,7 +27,7 @@ use super::model::Robot;
 use super::ne_compact::{self, Motion};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::compact::Compact;
-use crate::algebra::{to_poly, Poly, Symbol};
+use crate::algebra::Poly;
 
 /// The compact dynamics of one robot, every quantity over one arena.
 #[derive(Clone, Debug)]
@@ -76,7 +76,7 @@ impl CompactDynamics {
         };
         let c = christoffel::coriolis(&christoffel);
         let friction: Vec<Poly> = (1..=robot.dof())
-            .map(|k| to_poly(&robot.drive(k).viscous).mul(&Poly::symbol(&Symbol::qd(k as u32))))
+            .map(|k| robot.drive(k).friction(k as u32))
             .collect();
         let tau =
             christoffel::equations(&d, (!d_constant).then_some(&christoffel[..]), &g, &friction);

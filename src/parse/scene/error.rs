@@ -43,14 +43,6 @@ pub enum SceneErrorKind {
     /// An error of an expression inside a statement, located in the scene file.
     #[error("{}", .0.kind())]
     Expression(ParseError),
-    /// Something the scene language reads but symdyn cannot model yet.
-    #[error("{what} is not supported: {why}")]
-    Unsupported {
-        /// What was asked for.
-        what: String,
-        /// Why not, and what is.
-        why: &'static str,
-    },
     /// A joint type other than `revolute` and `prismatic`.
     #[error("unknown joint type `{0}`: a joint is `revolute` or `prismatic`")]
     UnknownJointType(String),

@@ -23,7 +23,8 @@ use std::ops::Range;
 const INERTIA_FORMS: &str = "diag(Ixx, Iyy, Izz), a symmetric matrix [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]], a symbol prefix such as `I2` (for I2xx, I2yy, I2zz, I2xy, I2xz, I2yz), or a shape of the link's mass: box(x, y, z), cylinder(r, h, axis), rod(l, axis) or sphere(r)";
 
 /// The fields of a joint, as a message lists them.
-const JOINT_KEYS: &str = "a, alpha, d and theta, and for its drive gear, rotor and viscous";
+const JOINT_KEYS: &str =
+    "a, alpha, d and theta, and for its drive gear, rotor, viscous and coulomb";
 
 /// The fields of a placed joint, as a message lists them.
 const PLACED_KEYS: &str = "xyz, rpy and axis (after `origin`)";
@@ -565,23 +566,14 @@ impl Builder {
         fields: Vec<FieldPair<'i>>,
     ) -> Result<(Vec<FieldPair<'i>>, Drive), SceneError> {
         let mut rest = Vec::with_capacity(fields.len());
-        // gear, rotor, viscous: the drive's constants with their ranges.
-        let mut drive: [Option<(Expr, Range<usize>)>; 3] = Default::default();
+        // gear, rotor, viscous, coulomb: the drive's constants with their ranges.
+        let mut drive: [Option<(Expr, Range<usize>)>; 4] = Default::default();
         for f in fields {
             let k = match f.key.as_str() {
                 "gear" => 0,
                 "rotor" => 1,
                 "viscous" => 2,
-                "coulomb" => {
-                    return Err(at.error(
-                        SceneErrorKind::Unsupported {
-                            what: "Coulomb friction".into(),
-                            why: "fc sgn(q̇) is not a polynomial, and symdyn's algebra has no sign function yet; \
-                                  viscous friction (viscous=B) is supported",
-                        },
-                        f.key_span,
-                    ))
-                }
+                "coulomb" => 3,
                 _ => {
                     rest.push(f);
                     continue;
@@ -590,7 +582,7 @@ impl Builder {
             let Value::Expr(pair) = &f.value else {
                 return Err(at.error(
                     SceneErrorKind::WrongValue {
-                        key: ["gear", "rotor", "viscous"][k],
+                        key: ["gear", "rotor", "viscous", "coulomb"][k],
                         takes: "a constant expression, such as `100` or `Jm2`",
                     },
                     f.value_span,
@@ -598,11 +590,16 @@ impl Builder {
             };
             let what = format!(
                 "the {} of joint {n}",
-                ["gear ratio", "rotor inertia", "viscous friction"][k]
+                [
+                    "gear ratio",
+                    "rotor inertia",
+                    "viscous friction",
+                    "Coulomb friction"
+                ][k]
             );
             drive[k] = Some((at.constant(pair, &what)?, f.value_span));
         }
-        let [gear, rotor, viscous] = drive;
+        let [gear, rotor, viscous, coulomb] = drive;
         if let (Some((_, span)), None) = (&gear, &rotor) {
             return Err(at.error(
                 SceneErrorKind::MissingKey {
@@ -621,6 +618,7 @@ impl Builder {
         let drive = Drive {
             rotor,
             viscous: viscous.map_or_else(Expr::zero, |(b, _)| b),
+            coulomb: coulomb.map_or_else(Expr::zero, |(c, _)| c),
         };
         Ok((rest, drive))
     }
