@@ -677,6 +677,7 @@ fn eval(e: &Expr) -> f64 {
         }
         Kind::Fun(Func::Sin, a) => eval(a).sin(),
         Kind::Fun(Func::Cos, a) => eval(a).cos(),
+        Kind::Fun(Func::Sgn, a) => symdyn::algebra::eval::sign(eval(a)),
     }
 }
 
