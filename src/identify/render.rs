@@ -1,0 +1,1 @@
+//! The regressor and the base parameters as text and JSON.
