@@ -9,6 +9,7 @@ mod derive_cmds;
 mod error;
 mod eval_cmd;
 pub mod output;
+mod regressor_cmd;
 mod repl_cmd;
 mod sheet_cmd;
 
@@ -147,6 +148,28 @@ pub enum Command {
         /// text: the code (or what was written); json: the manifest.
         #[arg(long, value_enum, default_value = "text")]
         format: codegen_cmd::CodegenFormat,
+    },
+    /// The regressor Y with τ = Y π (proved), and with --base the base inertial parameters: each an
+    /// exact combination of the standard parameters (Khalil's names, XXR2, ZZR1), the rule that put
+    /// it there, and the proof Y_β β = Y π.
+    Regressor {
+        /// The scene file.
+        scene: Option<String>,
+        /// Also the base parameters.
+        #[arg(long)]
+        base: bool,
+        /// Gravity as an input vector [gx, gy, gz] (as generated code taking g needs): a larger count.
+        #[arg(long)]
+        gravity_input: bool,
+        /// Append each joint's rotor inertia Iaj (τ_j += Ia_j q̈_j) to the standard parameters.
+        #[arg(long)]
+        rotors: bool,
+        /// The output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: regressor_cmd::RegressorFormat,
+        /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
+        #[arg(long)]
+        ascii: bool,
     },
     /// Benchmarks: derivation times, result sizes, numeric evaluation, peak memory, end-to-end runs and
     /// (with --peers) the SymPy/SymEngine peers; writes results.csv, benchmarks.md and charts (SVG,
@@ -330,6 +353,21 @@ pub fn run(args: Args) -> Result<String, CliError> {
             out: output.as_deref(),
             prefix: prefix.as_deref(),
             format,
+        }),
+        Command::Regressor {
+            scene,
+            base,
+            gravity_input,
+            rotors,
+            format,
+            ascii,
+        } => regressor_cmd::regressor(regressor_cmd::RegressorArgs {
+            scene: scene.as_deref(),
+            base,
+            gravity_input,
+            rotors,
+            format,
+            ascii,
         }),
         Command::Bench {
             quick,

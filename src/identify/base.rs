@@ -299,7 +299,7 @@ fn rule(reg: &Regressor, p: &StandardParam) -> String {
     }
     match reg.model.joints[j - 1].kind {
         JointKind::Revolute => format!(
-            "revolute joint {j}: what of link {j} is invariant about the joint axis moves to the links before it (Khalil's grouping rule)"
+            "revolute joint {j}: what of link {j} is invariant about the joint axis is grouped with the parameters before it (Khalil's grouping rule)"
         ),
         JointKind::Prismatic => format!(
             "prismatic joint {j}: link {j} turns with the link before it, so its inertia groups into that link's (Khalil's grouping rule)"
