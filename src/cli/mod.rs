@@ -8,6 +8,7 @@ mod codegen_cmd;
 mod derive_cmds;
 mod error;
 mod eval_cmd;
+mod identify_cmd;
 pub mod output;
 mod regressor_cmd;
 mod repl_cmd;
@@ -170,6 +171,27 @@ pub enum Command {
         /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
         #[arg(long)]
         ascii: bool,
+    },
+    /// Least-squares identification of the base parameters from samples q, q̇, q̈, τ in a CSV file (QR,
+    /// condition number, residual, a standard deviation per parameter).
+    Identify {
+        /// The scene file.
+        scene: Option<String>,
+        /// The samples: a header row q1..qN,qd1..qdN,qdd1..qddN,tau1..tauN, then one row per sample.
+        #[arg(long, value_name = "FILE.csv")]
+        data: String,
+        /// Print each base parameter's expression in the standard parameters too.
+        #[arg(long)]
+        base: bool,
+        /// Values of symbolic geometry (and g, and inertial parameters to compare with), name=value.
+        #[arg(long = "set", value_name = "NAME=VALUE,...", allow_hyphen_values = true)]
+        set: Vec<String>,
+        /// The model has rotor inertias Iaj.
+        #[arg(long)]
+        rotors: bool,
+        /// The output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: identify_cmd::IdentifyFormat,
     },
     /// Benchmarks: derivation times, result sizes, numeric evaluation, peak memory, end-to-end runs and
     /// (with --peers) the SymPy/SymEngine peers; writes results.csv, benchmarks.md and charts (SVG,
@@ -368,6 +390,21 @@ pub fn run(args: Args) -> Result<String, CliError> {
             rotors,
             format,
             ascii,
+        }),
+        Command::Identify {
+            scene,
+            data,
+            base,
+            set,
+            rotors,
+            format,
+        } => identify_cmd::identify(identify_cmd::IdentifyArgs {
+            scene: scene.as_deref(),
+            data: &data,
+            base,
+            set: &set,
+            rotors,
+            format,
         }),
         Command::Bench {
             quick,
