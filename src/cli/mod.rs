@@ -184,7 +184,11 @@ pub enum Command {
         #[arg(long)]
         base: bool,
         /// Values of symbolic geometry (and g, and inertial parameters to compare with), name=value.
-        #[arg(long = "set", value_name = "NAME=VALUE,...", allow_hyphen_values = true)]
+        #[arg(
+            long = "set",
+            value_name = "NAME=VALUE,...",
+            allow_hyphen_values = true
+        )]
         set: Vec<String>,
         /// The model has rotor inertias Iaj.
         #[arg(long)]

@@ -67,7 +67,11 @@ pub fn regressor(args: RegressorArgs<'_>) -> Result<String, CliError> {
             &reg,
             base.as_ref(),
             &tau_proof,
-            if args.ascii { Style::Ascii } else { Style::Text },
+            if args.ascii {
+                Style::Ascii
+            } else {
+                Style::Text
+            },
         ),
     };
     let mut failed = !proof_summary(&tau_proof).0;

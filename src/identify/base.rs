@@ -52,7 +52,7 @@ pub struct BaseOptions {
 impl Default for BaseOptions {
     fn default() -> BaseOptions {
         BaseOptions {
-            seed: 0xBA5E_0F_1D,
+            seed: 0xBA5E_0F1D,
             attempts: 3,
             proof: ProofOptions::default(),
         }
@@ -194,12 +194,8 @@ impl Sampler {
         vars.dedup();
         let plan = Plan::new(&reg.arena, &outputs)
             .map_err(|NoValue(id)| IdentifyError::NoRationalValue(atom_name(id)))?;
-        let gravity_symbols: Vec<Symbol> = reg
-            .model
-            .gravity
-            .iter()
-            .flat_map(|e| e.symbols())
-            .collect();
+        let gravity_symbols: Vec<Symbol> =
+            reg.model.gravity.iter().flat_map(|e| e.symbols()).collect();
         let input = |s: &Symbol| {
             reg.options.gravity == Gravity::Input
                 && GRAVITY_INPUT.iter().any(|g| Symbol::new(g) == *s)
@@ -232,12 +228,7 @@ impl Sampler {
     }
 
     /// The stacked rows of `Y` (columns `cols`) at `samples` random states for the geometry `geo`.
-    fn matrix(
-        &self,
-        geo: &FxHashMap<AtomId, i64>,
-        samples: usize,
-        rng: &mut Rng,
-    ) -> Vec<Vec<u64>> {
+    fn matrix(&self, geo: &FxHashMap<AtomId, i64>, samples: usize, rng: &mut Rng) -> Vec<Vec<u64>> {
         let mut rows = Vec::new();
         for _ in 0..samples {
             let mut point = geo.clone();
@@ -257,6 +248,10 @@ impl Sampler {
         rows
     }
 }
+
+/// The coefficients of the dependent columns at one elimination (rows: dependent columns; entries:
+/// the pivots' coefficients), or why they cannot be recovered.
+type Coefficients<'a> = dyn Fn(&EchelonMod) -> Result<Vec<Vec<Rational>>, String> + 'a;
 
 /// The monomials of degree at most 2 in `vars` (as exponent lists over `vars`).
 fn monomials(k: usize) -> Vec<Vec<u32>> {
@@ -278,17 +273,15 @@ fn monomials(k: usize) -> Vec<Vec<u32>> {
 }
 
 fn monomial_value(e: &[u32], values: &[i64]) -> Rational {
-    e.iter()
-        .zip(values)
-        .fold(Rational::one(), |acc, (&k, &v)| {
-            &acc * &Rational::int(v).pow(k as i64).expect("non-negative power")
-        })
+    e.iter().zip(values).fold(Rational::one(), |acc, (&k, &v)| {
+        &acc * &Rational::int(v).pow(k as i64).expect("non-negative power")
+    })
 }
 
 fn monomial_poly(e: &[u32], vars: &[Var]) -> Poly {
-    e.iter().zip(vars).fold(Poly::one(), |acc, (&k, &v)| {
-        acc.mul(&Poly::atom(v).pow(k))
-    })
+    e.iter()
+        .zip(vars)
+        .fold(Poly::one(), |acc, (&k, &v)| acc.mul(&Poly::atom(v).pow(k)))
 }
 
 /// The rule that grouped standard parameter `p` of link `j`.
@@ -308,10 +301,15 @@ fn rule(reg: &Regressor, p: &StandardParam) -> String {
 }
 
 /// The base parameters of a regressor (see the [module docs](self)).
-pub fn base_parameters(reg: &Regressor, opts: &BaseOptions) -> Result<BaseParameters, IdentifyError> {
+pub fn base_parameters(
+    reg: &Regressor,
+    opts: &BaseOptions,
+) -> Result<BaseParameters, IdentifyError> {
     let mut last = None;
     for attempt in 0..opts.attempts.max(1) {
-        let seed = opts.seed.wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(attempt as u64));
+        let seed = opts
+            .seed
+            .wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(attempt as u64));
         let got = attempt_once(reg, seed, &opts.proof)?;
         let refuted = got
             .dependency_proofs
@@ -498,7 +496,7 @@ fn interpolate(
     sampler: &Sampler,
     geo: &FxHashMap<AtomId, i64>,
     first: &EchelonMod,
-    at: &dyn Fn(&EchelonMod) -> Result<Vec<Vec<Rational>>, String>,
+    at: &Coefficients<'_>,
     samples: usize,
     rng: &mut Rng,
 ) -> Result<Vec<Vec<Poly>>, String> {

@@ -75,7 +75,9 @@ pub fn eval_rows(
         v
     })
     .map_err(|_| {
-        IdentifyError::Unbound(missing.map_or_else(|| "a symbol".into(), crate::algebra::compact::atom_name))
+        IdentifyError::Unbound(
+            missing.map_or_else(|| "a symbol".into(), crate::algebra::compact::atom_name),
+        )
     })?;
     let width = rows.first().map_or(0, Vec::len);
     Ok(got.chunks(width.max(1)).map(<[f64]>::to_vec).collect())
@@ -93,7 +95,12 @@ fn state_values(values: &mut HashMap<Symbol, f64>, q: &[f64], qd: &[f64], qdd: &
 /// The numeric rank of `rows` (`Y`, or the base regressor) stacked at `samples` random states, every
 /// parameter a random value in `[1/2, 2]` and every coordinate in `[−2, 2]`: the number of singular
 /// values above [`RANK_TOLERANCE`] `· σ_max`. An independent check of the exact count.
-pub fn numeric_rank(reg: &Regressor, rows: &[Vec<Poly>], samples: usize, seed: u64) -> Result<usize, IdentifyError> {
+pub fn numeric_rank(
+    reg: &Regressor,
+    rows: &[Vec<Poly>],
+    samples: usize,
+    seed: u64,
+) -> Result<usize, IdentifyError> {
     let mut rng = Rng::new(seed);
     let mut values: HashMap<Symbol, f64> = parameters(reg, rows)
         .into_iter()
@@ -132,13 +139,20 @@ pub struct Sample {
 /// Reads samples from CSV text: a header row naming the columns `q1..qN, qd1..qdN, qdd1..qddN,
 /// tau1..tauN` (any order, other columns ignored; `tauK` may also be the scene's input name), then
 /// one sample per row. Errors are located as `file:line:column`.
-pub fn parse_csv(text: &str, file: &str, n: usize, inputs: &[String]) -> Result<Vec<Sample>, IdentifyError> {
+pub fn parse_csv(
+    text: &str,
+    file: &str,
+    n: usize,
+    inputs: &[String],
+) -> Result<Vec<Sample>, IdentifyError> {
     let mut lines = text
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     let Some((hline, header)) = lines.next() else {
-        return Err(IdentifyError::Data(format!("{file}: empty file: a header row q1,...,tau{n} and samples are needed")));
+        return Err(IdentifyError::Data(format!(
+            "{file}: empty file: a header row q1,...,tau{n} and samples are needed"
+        )));
     };
     let names: Vec<&str> = header.split(',').map(str::trim).collect();
     let find = |want: &str, alt: Option<&str>| -> Result<usize, IdentifyError> {
@@ -157,7 +171,10 @@ pub fn parse_csv(text: &str, file: &str, n: usize, inputs: &[String]) -> Result<
         cols[0].push(find(&format!("q{i}"), None)?);
         cols[1].push(find(&format!("qd{i}"), None)?);
         cols[2].push(find(&format!("qdd{i}"), None)?);
-        cols[3].push(find(&format!("tau{i}"), inputs.get(i - 1).map(String::as_str))?);
+        cols[3].push(find(
+            &format!("tau{i}"),
+            inputs.get(i - 1).map(String::as_str),
+        )?);
     }
     let mut out = Vec::new();
     for (ln, line) in lines {
@@ -192,7 +209,12 @@ pub fn parse_csv(text: &str, file: &str, n: usize, inputs: &[String]) -> Result<
                     ))
                 })
         };
-        let read = |which: &Vec<usize>| which.iter().map(|&k| get(k)).collect::<Result<Vec<f64>, _>>();
+        let read = |which: &Vec<usize>| {
+            which
+                .iter()
+                .map(|&k| get(k))
+                .collect::<Result<Vec<f64>, _>>()
+        };
         out.push(Sample {
             q: read(&cols[0])?,
             qd: read(&cols[1])?,

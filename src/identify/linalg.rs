@@ -195,7 +195,11 @@ pub fn solve(a: &[Vec<Rational>], bs: &[Vec<Rational>]) -> Option<Vec<Vec<Ration
     // The right sides' columns must hold no pivot (else inconsistent): checked above by the count.
     Some(
         (0..bs.len())
-            .map(|k| (0..unknowns).map(|r| e.rows[r][unknowns + k].clone()).collect())
+            .map(|k| {
+                (0..unknowns)
+                    .map(|r| e.rows[r][unknowns + k].clone())
+                    .collect()
+            })
             .collect(),
     )
 }

@@ -96,7 +96,9 @@ fn gravity_words(reg: &Regressor) -> String {
                 .collect::<Vec<_>>()
                 .join(", ")
         ),
-        Gravity::Input => "gravity: an input vector [gx, gy, gz] in frame 0 (--gravity-input)".into(),
+        Gravity::Input => {
+            "gravity: an input vector [gx, gy, gz] in frame 0 (--gravity-input)".into()
+        }
     }
 }
 
@@ -105,7 +107,12 @@ fn names(reg: &Regressor, ks: impl IntoIterator<Item = usize>) -> Vec<String> {
 }
 
 /// `Y` (and, with `base`, the base parameters) as text in `style` (`Text` or `Ascii`).
-pub fn text(reg: &Regressor, base: Option<&BaseParameters>, tau_proof: &[Outcome], style: Style) -> String {
+pub fn text(
+    reg: &Regressor,
+    base: Option<&BaseParameters>,
+    tau_proof: &[Outcome],
+    style: Style,
+) -> String {
     let mut s = String::new();
     let n = reg.dof();
     let np = reg.params.len();
@@ -193,7 +200,11 @@ pub fn base_text(reg: &Regressor, b: &BaseParameters, style: Style) -> String {
         if p.terms.len() == 1 {
             s.push_str(&format!("  {} (alone)\n", p.name));
         } else {
-            let sep = if b.coefficients.is_ok() { "=" } else { "groups" };
+            let sep = if b.coefficients.is_ok() {
+                "="
+            } else {
+                "groups"
+            };
             s.push_str(&format!("  {} {sep} {rhs}\n", p.name));
         }
     }
@@ -273,7 +284,9 @@ pub fn latex(reg: &Regressor, b: &BaseParameters) -> String {
 
 /// `XXR2` as `\mathrm{XXR}_{2}`.
 pub fn latex_name(name: &str) -> String {
-    let split = name.find(|c: char| c.is_ascii_digit()).unwrap_or(name.len());
+    let split = name
+        .find(|c: char| c.is_ascii_digit())
+        .unwrap_or(name.len());
     format!("\\mathrm{{{}}}_{{{}}}", &name[..split], &name[split..])
 }
 
@@ -325,7 +338,10 @@ pub fn json(reg: &Regressor, base: Option<&BaseParameters>, tau_proof: &[Outcome
         );
         m.insert(
             "base_regressor".into(),
-            json!(yb.iter().map(|r| r.iter().map(ascii).collect::<Vec<_>>()).collect::<Vec<_>>()),
+            json!(yb
+                .iter()
+                .map(|r| r.iter().map(ascii).collect::<Vec<_>>())
+                .collect::<Vec<_>>()),
         );
         m.insert("count".into(), json!(b.count()));
         let (h1, how1) = proof_summary(&b.dependency_proofs);
@@ -351,7 +367,10 @@ pub fn y_latex(reg: &Regressor) -> String {
         .map(|(s, v)| {
             format!(
                 "{} &= {}",
-                crate::print::to_string(&crate::algebra::Expr::symbol(&s.ascii_name()), Style::Latex),
+                crate::print::to_string(
+                    &crate::algebra::Expr::symbol(&s.ascii_name()),
+                    Style::Latex
+                ),
                 poly_to_string(v, Style::Latex)
             )
         })
@@ -368,5 +387,8 @@ pub fn y_latex(reg: &Regressor) -> String {
             }
         }
     }
-    format!("\\begin{{align*}}\n{}\n\\end{{align*}}\n", lines.join(" \\\\\n"))
+    format!(
+        "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+        lines.join(" \\\\\n")
+    )
 }

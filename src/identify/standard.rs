@@ -179,4 +179,3 @@ pub fn inertia_entry(q: Quantity) -> Option<(usize, usize)> {
         _ => None,
     }
 }
-
