@@ -500,3 +500,28 @@ fn cli_regressor_and_identify() {
     assert!(err.contains("bad.csv:1:1: missing column qd3"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn repl_regressor_and_base() {
+    let mut s = symdyn::repl::Session::new();
+    let text = std::fs::read_to_string(format!(
+        "{}/examples/elbow.scene",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    s.load_scene_text("elbow.scene", &text).unwrap();
+    let row = s.eval("regressor 2").unwrap();
+    assert!(row.starts_with("Y2[ZZ2] = q̈1 + q̈2\n"), "{row}");
+    let all = s.eval("regressor").unwrap();
+    assert!(all.contains("proved [exact]: Y pi = tau"), "{all}");
+    let base = s.eval("base").unwrap();
+    assert!(base.contains("base parameters: 6 of 20"), "{base}");
+    let one = s.eval("base ZZR1").unwrap();
+    assert!(
+        one.starts_with("ZZR1 = -M1 l1^2 - M2 l1^2 + ZZ1\n"),
+        "{one}"
+    );
+    assert!(one.contains("grouped into it: M1 M2"), "{one}");
+    assert!(s.eval("base XX9").is_err());
+    assert!(s.eval("regressor 3").is_err());
+}
