@@ -115,8 +115,9 @@ fn every_example_is_proved() {
         let (out, err, code) = symdyn(&["check", &format!("examples/{n}")]);
         assert_eq!(code, 0, "{n}: {out}{err}");
         assert_eq!(out.matches("proved [").count(), 4, "{n}: {out}");
-        // The small arms are proved exactly under the default budget.
-        if !n.starts_with("stanford") {
+        // The small arms are proved exactly under the default budget; the Stanford arm, the UR5 and
+        // the Panda (six and seven joints) pass it and are proved at random points.
+        if !["stanford", "ur5", "panda"].iter().any(|s| n.starts_with(s)) {
             assert_eq!(
                 out.matches("proved [exact]:").count(),
                 4,
