@@ -117,7 +117,10 @@ fn every_example_is_proved() {
         assert_eq!(out.matches("proved [").count(), 4, "{n}: {out}");
         // The small arms are proved exactly under the default budget; the Stanford arm, the UR5 and
         // the Panda (six and seven joints) pass it and are proved at random points.
-        if !["stanford", "ur5", "panda"].iter().any(|s| n.starts_with(s)) {
+        if !["stanford", "ur5", "panda"]
+            .iter()
+            .any(|s| n.starts_with(s))
+        {
             assert_eq!(
                 out.matches("proved [exact]:").count(),
                 4,

@@ -3,13 +3,16 @@
 //!
 //! # Method
 //! 1. **Exact elimination.** Every symbol of the geometry (a length, a twist, `g`) gets one random
-//!    integer value; each of several random states gives every joint angle a random integer
-//!    half-angle tangent (`sin θ = 2t/(1+t²)`, so every value is rational) and every rate an integer.
-//!    The stacked rows of `Y` at these states are reduced over ℚ ([`super::linalg::Echelon`]), the
-//!    columns in the standard order: the pivot columns are the base parameters, and every other column
-//!    is a combination of the pivots *before* it. With links in order and each link's parameters in
-//!    the order `XX … M`, this is Khalil's choice: a later link's parameters are grouped into earlier
-//!    ones (`YY2` into `XXR2` and `ZZR1`, `M3` into `MXR2`, `ZZR1`, …).
+//!    integer value; each of several random states gives every joint angle a random half-angle
+//!    tangent `t` (`sin θ = 2t/(1+t²)`) and every rate a random value. `Y` is evaluated there exactly,
+//!    modulo the prime `p = 2^61 − 1` (no big numbers; `1 + t²` never vanishes since `p ≡ 3 mod 4`),
+//!    and the stacked rows are reduced ([`super::linalg::EchelonMod`]), the columns in the standard
+//!    order: the pivot columns are the base parameters, and every other column is a combination of
+//!    the pivots *before* it, its coefficients recovered as rationals by rational reconstruction.
+//!    With links in order and each link's parameters in the order `XX … M`, this is Khalil's choice:
+//!    a later link's parameters are grouped into earlier ones (`YY2` into `XXR2` and `ZZR1`, `M3`
+//!    into `MXR2`, `ZZR1`, …). The rank modulo `p` at a point is at most the rank of `Y` over ℚ, so
+//!    the pivots are independent columns.
 //! 2. **Coefficients in the geometry.** A coefficient is a polynomial of degree at most 2 in the
 //!    symbolic lengths (a length squared times a mass moves into an inertia), independent of `g`. The
 //!    elimination is repeated at more random values of the lengths and each coefficient interpolated.
@@ -25,12 +28,13 @@
 //! constants in `Y`, never random.
 
 use super::error::IdentifyError;
-use super::linalg::{reconstruct, solve, to_mod, EchelonMod};
+use super::linalg::{int_mod, reconstruct, solve, EchelonMod, Fp, P};
 use super::regressor::{Gravity, Regressor, GRAVITY_INPUT};
 use super::standard::{Quantity, StandardParam};
 use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::compact::atom_name;
 use crate::algebra::compact::degree::{is_angle, DegreeBounds, Var};
+use crate::algebra::compact::eval::{eval, Ring};
 use crate::algebra::compact::fraction::{NoValue, Plan};
 use crate::algebra::compact::identity::{prove, Outcome, ProofOptions};
 use crate::algebra::fast_hash::FxHashMap;
@@ -161,8 +165,9 @@ impl BaseParameters {
 }
 
 /// What the elimination needs of a regressor: the plan of its non-zero entries and its variables.
-struct Sampler {
-    plan: Plan,
+struct Sampler<'a> {
+    reg: &'a Regressor,
+    outputs: Vec<&'a Poly>,
     /// `slot[i][c]`: the output index of entry `(i, cols[c])`, or `None` for a zero entry.
     slot: Vec<Vec<Option<usize>>>,
     state: Vec<Var>,
@@ -171,8 +176,8 @@ struct Sampler {
     angles_in_geometry: Vec<Var>,
 }
 
-impl Sampler {
-    fn new(reg: &Regressor, cols: &[usize]) -> Result<Sampler, IdentifyError> {
+impl<'a> Sampler<'a> {
+    fn new(reg: &'a Regressor, cols: &[usize]) -> Result<Sampler<'a>, IdentifyError> {
         let mut outputs: Vec<&Poly> = Vec::new();
         let mut slot = vec![vec![None; cols.len()]; reg.dof()];
         let mut bounds = DegreeBounds::new(&reg.arena);
@@ -192,7 +197,8 @@ impl Sampler {
         }
         vars.sort_unstable();
         vars.dedup();
-        let plan = Plan::new(&reg.arena, &outputs)
+        // Every leaf must have rational values at rational points (no surds, no π).
+        Plan::new(&reg.arena, &outputs)
             .map_err(|NoValue(id)| IdentifyError::NoRationalValue(atom_name(id)))?;
         let gravity_symbols: Vec<Symbol> =
             reg.model.gravity.iter().flat_map(|e| e.symbols()).collect();
@@ -218,7 +224,8 @@ impl Sampler {
             }
         }
         Ok(Sampler {
-            plan,
+            reg,
+            outputs,
             slot,
             state,
             lengths,
@@ -227,22 +234,46 @@ impl Sampler {
         })
     }
 
-    /// The stacked rows of `Y` (columns `cols`) at `samples` random states for the geometry `geo`.
+    /// The stacked rows of `Y` (columns `cols`), modulo `p`, at `samples` random states for the
+    /// geometry `geo`: every state variable a random residue (an angle by its half-angle tangent:
+    /// `1 + t²` never vanishes modulo `p ≡ 3 (mod 4)`).
     fn matrix(&self, geo: &FxHashMap<AtomId, i64>, samples: usize, rng: &mut Rng) -> Vec<Vec<u64>> {
         let mut rows = Vec::new();
+        let mut point: FxHashMap<AtomId, Fp> =
+            geo.iter().map(|(&v, &x)| (v, Fp(int_mod(x)))).collect();
+        let (one, two) = (Fp(1), Fp(2));
         for _ in 0..samples {
-            let mut point = geo.clone();
             for &v in &self.state {
-                point.insert(v, rng.int(1, 1 << 12));
+                point.insert(v, Fp(rng.int(1, (P - 1) as i64) as u64));
             }
-            let mut values = self.plan.eval(&point);
+            let values = eval(
+                &self.reg.arena,
+                &self.outputs,
+                &mut |id| match atom::class(id) {
+                    Class::Param | Class::Coord => point.get(&id).copied(),
+                    Class::Sin | Class::Cos => {
+                        let key = if atom::class(id) == Class::Sin {
+                            id
+                        } else {
+                            atom::partner(id)
+                        };
+                        let t = *point.get(&key)?;
+                        let t2 = t.mul(&t);
+                        let w = one.add(&t2);
+                        Some(if atom::class(id) == Class::Sin {
+                            two.mul(&t).over(w)
+                        } else {
+                            one.add(&Fp((P - t2.0) % P)).over(w)
+                        })
+                    }
+                    _ => None,
+                },
+            );
+            // Every leaf was checked to have values (`Plan::new`); a failure leaves zeros, which
+            // can only lower the rank, and a lowered rank is caught by the proofs.
+            let values = values.unwrap_or_else(|_| vec![Fp(0); self.outputs.len()]);
             for slots in &self.slot {
-                rows.push(
-                    slots
-                        .iter()
-                        .map(|s| s.map_or(0, |o| to_mod(&values.to_rational(o)).unwrap_or(0)))
-                        .collect(),
-                );
+                rows.push(slots.iter().map(|s| s.map_or(0, |o| values[o].0)).collect());
             }
         }
         rows
@@ -363,7 +394,7 @@ fn attempt_once(
         let names: Vec<String> = sampler
             .angles_in_geometry
             .iter()
-            .filter_map(|&v| atom::symbol_of(v).map(|s| s.ascii_name()))
+            .map(|&v| atom::symbol_of(v).map_or_else(|| atom_name(v), |s| s.ascii_name()))
             .collect();
         Err(format!(
             "the grouping coefficients hold sines and cosines of the symbolic angle(s) {}: symdyn gives the count and the grouping, not their expressions",

@@ -6,6 +6,7 @@
 //! The rank modulo `p` is at most the rank over ℚ, so pivots found modulo `p` are independent over ℚ
 //! too; what the reconstruction gives is a claim that [`super::base`] proves symbolically.
 
+use crate::algebra::compact::eval::Ring;
 use crate::algebra::Rational;
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
@@ -37,6 +38,46 @@ fn big_mod(b: &BigInt) -> u64 {
     let m = BigInt::from(P);
     let r = ((b % &m) + &m) % &m;
     r.to_u64().expect("reduced")
+}
+
+/// An integer modulo `p`.
+pub fn int_mod(x: i64) -> u64 {
+    x.rem_euclid(P as i64) as u64
+}
+
+/// A residue modulo `p`, as a [`Ring`] for evaluating compact quantities without big numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fp(pub u64);
+
+impl Ring for Fp {
+    fn from_rational(r: &Rational) -> Self {
+        match r.as_small() {
+            Some((n, d)) => Fp(mul_mod(int_mod(n), inv_mod(int_mod(d)))),
+            None => Fp(to_mod(r).unwrap_or(0)),
+        }
+    }
+    fn add(&self, o: &Self) -> Self {
+        Fp((self.0 + o.0) % P)
+    }
+    fn mul(&self, o: &Self) -> Self {
+        Fp(mul_mod(self.0, o.0))
+    }
+    fn powi(&self, e: i32) -> Option<Self> {
+        if e >= 0 {
+            Some(Fp(pow_mod(self.0, e as u64)))
+        } else if self.0 == 0 {
+            None
+        } else {
+            Some(Fp(pow_mod(inv_mod(self.0), e.unsigned_abs() as u64)))
+        }
+    }
+}
+
+impl Fp {
+    /// `self / o` (`o` non-zero).
+    pub fn over(self, o: Fp) -> Fp {
+        Fp(mul_mod(self.0, inv_mod(o.0)))
+    }
 }
 
 /// A rational modulo `p`; `None` when its denominator is a multiple of `p`.
