@@ -525,3 +525,30 @@ fn repl_regressor_and_base() {
     assert!(s.eval("base XX9").is_err());
     assert!(s.eval("regressor 3").is_err());
 }
+
+#[test]
+fn sheet_section_and_latex() {
+    let der = symdyn::dynamics::Derivation::new(example("elbow")).unwrap();
+    let tex = symdyn::sheet::sheet(&der, &symdyn::sheet::SheetOptions::default());
+    let with = symdyn::sheet::identification::with_identification(&der, &tex);
+    let at = with
+        .find("\\section*{Linear in the inertial parameters}")
+        .unwrap();
+    assert!(at < with.find("\\section*{Both formulations agree}").unwrap());
+    assert!(with.contains(
+        "\\[ \\mathrm{ZZR}_{1} = \\mathrm{ZZ}_{1} - l_{1}^{2} \\, \\mathrm{M}_{1} - l_{1}^{2} \\, \\mathrm{M}_{2} \\]"
+    ));
+    assert!(with.contains("Hence exactly 6 base parameters."));
+    let (code, out, _) = symdyn(&[
+        "regressor",
+        "examples/elbow.scene",
+        "--base",
+        "--format",
+        "latex",
+    ]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("\\[ \\mathrm{MXR}_{2} = \\mathrm{MX}_{2} + l_{2} \\, \\mathrm{M}_{2} \\]"),
+        "{out}"
+    );
+}

@@ -91,6 +91,10 @@ pub enum Command {
         /// large robots).
         #[arg(long)]
         brief: bool,
+        /// Add the section "Linear in the inertial parameters": the regressor, the base parameters
+        /// with their expressions, the proofs.
+        #[arg(long)]
+        identification: bool,
     },
     /// Numbers from the derived equations: τ (default), D(q), C(q, q̇), g(q), or the forward dynamics
     /// q̈ = D⁻¹(u − C q̇ − g), for given parameter values and state.
@@ -334,6 +338,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             output,
             pdf,
             brief,
+            identification,
         } => sheet_cmd::sheet_cmd(
             scene.as_deref(),
             method,
@@ -341,6 +346,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             output.as_deref(),
             pdf,
             brief,
+            identification,
         ),
         Command::Eval {
             scene,

@@ -9,6 +9,7 @@ use super::regressor::{Gravity, Regressor};
 use crate::algebra::compact::identity::{Outcome, Proof};
 use crate::algebra::compact::Compact;
 use crate::algebra::{Poly, Symbol};
+use crate::print::layout::width;
 use crate::print::poly::poly_to_string;
 use crate::print::Style;
 use serde_json::{json, Value};
@@ -256,30 +257,99 @@ pub fn base_text(reg: &Regressor, b: &BaseParameters, style: Style) -> String {
     s
 }
 
-/// The base parameters as a LaTeX `align*`.
+/// The base parameters in LaTeX: one display per grouped parameter, then those alone.
 pub fn latex(reg: &Regressor, b: &BaseParameters) -> String {
-    let mut s = String::from("\\begin{align*}\n");
-    let lines: Vec<String> = b
-        .base
+    let mut s = String::new();
+    let mut alone = Vec::new();
+    for p in &b.base {
+        let name = latex_name(&p.name);
+        if p.terms.len() == 1 {
+            alone.push(name);
+            continue;
+        }
+        let terms: Option<Vec<String>> = p
+            .terms
+            .iter()
+            .map(|(k, c)| Some(latex_term(c.as_ref()?, &latex_name(&reg.params[*k].name()))))
+            .collect();
+        match terms {
+            Some(t) => s.push_str(&latex_equation(&name, &t)),
+            None => s.push_str(&format!(
+                "\\[ {name} \\ni {} \\]\n",
+                p.terms
+                    .iter()
+                    .map(|(k, _)| latex_name(&reg.params[*k].name()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
+        }
+    }
+    if !alone.is_empty() {
+        s.push_str(&format!("\\[ {} \\]\n", alone.join(",\\; ")));
+    }
+    s
+}
+
+/// `c · name` in LaTeX: `name`, `-name`, `a_{2}^{2} name`, `(… + …) name`.
+pub fn latex_term(c: &Poly, name: &str) -> String {
+    if let Some(k) = c.as_constant() {
+        if k.is_one() {
+            return name.to_string();
+        }
+        if k.is_minus_one() {
+            return format!("-{name}");
+        }
+    }
+    let cs = poly_to_string(c, Style::Latex);
+    if c.len() == 1 {
+        format!("{cs} \\, {name}")
+    } else {
+        format!("\\left({cs}\\right) {name}")
+    }
+}
+
+/// `lhs = t1 + t2 + …` as display math, broken across `align*` lines at about 60 characters of
+/// rendered width.
+pub fn latex_equation(lhs: &str, terms: &[String]) -> String {
+    let mut lines: Vec<String> = vec![String::new()];
+    for t in terms {
+        let last = lines.last_mut().expect("a line");
+        let joined = if last.is_empty() {
+            t.clone()
+        } else if let Some(rest) = t.strip_prefix('-') {
+            format!("{last} - {rest}")
+        } else {
+            format!("{last} + {t}")
+        };
+        if !last.is_empty() && width(&joined) > 60 {
+            let next = if let Some(rest) = t.strip_prefix('-') {
+                format!("- {rest}")
+            } else {
+                format!("+ {t}")
+            };
+            lines.push(next);
+        } else {
+            *last = joined;
+        }
+    }
+    if lines.len() == 1 {
+        return format!("\\[ {lhs} = {} \\]\n", lines[0]);
+    }
+    let body: Vec<String> = lines
         .iter()
-        .map(|p| {
-            let name = latex_name(&p.name);
-            match b.expression(p, &reg.params) {
-                Some(e) => format!("{name} &= {}", poly_to_string(&e, Style::Latex)),
-                None => format!(
-                    "{name} &\\ni {}",
-                    p.terms
-                        .iter()
-                        .map(|(k, _)| latex_name(&reg.params[*k].name()))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 {
+                format!("{lhs} &= {l}")
+            } else {
+                format!("&\\quad {l}")
             }
         })
         .collect();
-    s.push_str(&lines.join(" \\\\\n"));
-    s.push_str("\n\\end{align*}\n");
-    s
+    format!(
+        "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+        body.join(" \\\\\n")
+    )
 }
 
 /// `XXR2` as `\mathrm{XXR}_{2}`.
