@@ -443,9 +443,17 @@ fn cli_regressor_and_identify() {
     assert_eq!(doc["count"], 6);
     assert_eq!(doc["base"][0]["name"], "ZZR1");
     assert_eq!(doc["base"][0]["grouped"], serde_json::json!(["M1", "M2"]));
+    let (code, out, _) = symdyn(&["regressor", "examples/elbow.scene", "--base"]);
+    assert_eq!(code, 0);
+    // The planar arm's zero twist is what keeps it planar: free, the links move in space.
+    assert!(
+        out.contains("alpha1 = 0 (joint 1): with it free the count would be 10"),
+        "{out}"
+    );
     let (code, out, _) = symdyn(&["regressor", "examples/puma560_symbolic.scene", "--base"]);
     assert_eq!(code, 0);
     assert!(out.contains("base parameters: 36 of 60"), "{out}");
+    assert!(out.contains("special values: none"), "{out}");
     assert!(out.contains("proved [exact]: Y_beta beta = Y pi"), "{out}");
     let (code, out, _) = symdyn(&[
         "regressor",

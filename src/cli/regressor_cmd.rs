@@ -5,6 +5,7 @@ use super::derive_cmds::load_robot;
 use super::CliError;
 use symdyn::algebra::compact::identity::ProofOptions;
 use symdyn::identify::render::{self, proof_summary};
+use symdyn::identify::special::{special_values, Special};
 use symdyn::identify::{base_parameters, BaseOptions, Gravity, Regressor, RegressorOptions};
 use symdyn::print::Style;
 
@@ -53,26 +54,53 @@ pub fn regressor(args: RegressorArgs<'_>) -> Result<String, CliError> {
     } else {
         None
     };
+    let special = match &base {
+        Some(b) => {
+            special_values(&robot, opts, b.count(), BaseOptions::default().seed).map_err(fail)?
+        }
+        None => vec![],
+    };
+    let special_text = |s: &Special| {
+        format!(
+            "{}{} = {} (joint {}): with it free the count would be {}",
+            s.field, s.joint, s.value, s.joint, s.free_count
+        )
+    };
     let out = match args.format {
-        RegressorFormat::Json => format!(
-            "{}\n",
-            serde_json::to_string_pretty(&render::json(&reg, base.as_ref(), &tau_proof))
-                .expect("JSON")
-        ),
+        RegressorFormat::Json => {
+            let mut doc = render::json(&reg, base.as_ref(), &tau_proof);
+            if base.is_some() {
+                doc["special_values"] =
+                    serde_json::json!(special.iter().map(special_text).collect::<Vec<_>>());
+            }
+            format!("{}\n", serde_json::to_string_pretty(&doc).expect("JSON"))
+        }
         RegressorFormat::Latex => match &base {
             Some(b) => render::latex(&reg, b),
             None => render::y_latex(&reg),
         },
-        RegressorFormat::Text => render::text(
-            &reg,
-            base.as_ref(),
-            &tau_proof,
-            if args.ascii {
+        RegressorFormat::Text => {
+            let style = if args.ascii {
                 Style::Ascii
             } else {
                 Style::Text
-            },
-        ),
+            };
+            let mut t = render::text(&reg, base.as_ref(), &tau_proof, style);
+            if base.is_some() {
+                if special.is_empty() {
+                    t.push_str(
+                        "special values: none of the scene's numeric DH constants decides the count \
+                         (all of them freed at once give the same count)\n",
+                    );
+                } else {
+                    t.push_str("special values that decide the count:\n");
+                    for s in &special {
+                        t.push_str(&format!("  {}\n", special_text(s)));
+                    }
+                }
+            }
+            t
+        }
     };
     let mut failed = !proof_summary(&tau_proof).0;
     if let Some(b) = &base {

@@ -331,6 +331,25 @@ fn rule(reg: &Regressor, p: &StandardParam) -> String {
     }
 }
 
+/// The rank of `Y` at random exact states (modulo `p`): the count of base parameters, without the
+/// grouping or the proofs (at most the true count; equal to it with high probability).
+pub fn rank(reg: &Regressor, seed: u64) -> Result<usize, IdentifyError> {
+    let n = reg.dof();
+    let cols: Vec<usize> = (0..reg.params.len())
+        .filter(|&k| !reg.zero_column(k))
+        .collect();
+    let sampler = Sampler::new(reg, &cols)?;
+    let mut rng = Rng::new(seed);
+    let geo: FxHashMap<AtomId, i64> = sampler
+        .lengths
+        .iter()
+        .chain(&sampler.fixed)
+        .map(|&v| (v, rng.int(2, 1 << 20)))
+        .collect();
+    let samples = cols.len().div_ceil(n.max(1)) + 3;
+    Ok(EchelonMod::of(sampler.matrix(&geo, samples, &mut rng)).rank())
+}
+
 /// The base parameters of a regressor (see the [module docs](self)).
 pub fn base_parameters(
     reg: &Regressor,

@@ -9,6 +9,7 @@
 //! | the base parameters, their grouping and proofs | [`base`] |
 //! | the regressor and base parameters as text and JSON | [`render`] |
 //! | the f64 rank check and least-squares fit | [`fit`] |
+//! | which special values of the geometry decide the count | [`special`] |
 //!
 //! The library does no I/O: the `symdyn regressor` and `symdyn identify` commands print what these
 //! return.
@@ -19,6 +20,7 @@ pub mod fit;
 pub mod linalg;
 pub mod regressor;
 pub mod render;
+pub mod special;
 pub mod standard;
 
 pub use base::{base_parameters, BaseOptions, BaseParam, BaseParameters, Fate};
