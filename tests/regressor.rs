@@ -506,6 +506,21 @@ fn cli_regressor_and_identify() {
     ]);
     assert_eq!(code, 1);
     assert!(err.contains("bad.csv:1:1: missing column qd3"), "{err}");
+    let short = dir.join("short.csv");
+    std::fs::write(&short, csv.lines().take(4).collect::<Vec<_>>().join("\n")).unwrap();
+    let (code, _, err) = symdyn(&[
+        "identify",
+        "examples/puma560.scene",
+        "--data",
+        short.to_str().unwrap(),
+        "--set",
+        "g=9.81",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("short.csv: 3 samples give 18 equations, fewer than the 36 base parameters"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -559,4 +574,25 @@ fn sheet_section_and_latex() {
         out.contains("\\[ \\mathrm{MXR}_{2} = \\mathrm{MX}_{2} + l_{2} \\, \\mathrm{M}_{2} \\]"),
         "{out}"
     );
+}
+
+/// Not a test of speed (no timed assertions): prints the time of the base parameters of random
+/// 7-joint chains, for the report (`cargo test --release --test regressor -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn seven_joint_chains_timing() {
+    for seed in 0..6 {
+        for convention in [Convention::Standard, Convention::Modified] {
+            let scene = symdyn::chains::random_scene(7, convention, seed);
+            let r = parse_scene(&scene).unwrap().robot;
+            let t = std::time::Instant::now();
+            let reg = Regressor::build(&r, RegressorOptions::default()).unwrap();
+            let got = base_parameters(&reg, &BaseOptions::default());
+            eprintln!(
+                "7 joints {convention:?} seed {seed}: {:?} in {:?}",
+                got.map(|b| (b.count(), b.coefficients.is_ok(), b.proved())),
+                t.elapsed()
+            );
+        }
+    }
 }

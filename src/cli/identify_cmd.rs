@@ -53,7 +53,13 @@ pub fn identify(args: IdentifyArgs<'_>) -> Result<String, CliError> {
     let reg = Regressor::build(&robot, opts).map_err(fail_scene)?;
     let base = base_parameters(&reg, &BaseOptions::default()).map_err(fail_scene)?;
     let values: HashMap<_, _> = set.into_iter().map(|(s, _, x)| (s, x)).collect();
-    let f = fit(&reg, &base, &samples, &values).map_err(fail_scene)?;
+    // A refused fit is about the data: name the file.
+    let f = fit(&reg, &base, &samples, &values).map_err(|e| match e {
+        symdyn::identify::IdentifyError::Fit(msg) => {
+            CliError::Input(format!("error: {}: {msg}", args.data))
+        }
+        e => fail_scene(e),
+    })?;
     let expr = |i: usize| {
         base.expression(&base.base[i], &reg.params)
             .map(|e| poly_to_string(&e, Style::Ascii))
