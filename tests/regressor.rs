@@ -111,7 +111,8 @@ fn check_proved(reg: &Regressor, b: &BaseParameters) {
 /// coefficients are not given as expressions and the count rests on the exact rank at random
 /// states, checked by the f64 rank below.
 ///
-/// Sources (as cited by issue 10 of this project; the figures there were taken from):
+/// Sources: the figures are those stated in issue 10 of this project; the literature they come from,
+/// as we know it (not re-read in this session, so check before citing further):
 /// - PUMA 560, standard DH with symbolic lengths: 36; 40 with rotor inertias. M. Gautier and W.
 ///   Khalil, "Direct calculation of minimum set of inertial parameters of serial robots", IEEE Trans.
 ///   Robotics and Automation 6(3), 1990; W. Khalil and E. Dombre, *Modeling, Identification and
