@@ -14,6 +14,7 @@ pub mod bench;
 pub mod chains;
 pub mod codegen;
 pub mod dynamics;
+pub mod identify;
 pub mod numeric;
 pub mod parse;
 pub mod print;

@@ -115,9 +115,12 @@ fn every_example_is_proved() {
         let (out, err, code) = symdyn(&["check", &format!("examples/{n}")]);
         assert_eq!(code, 0, "{n}: {out}{err}");
         assert_eq!(out.matches("proved [").count(), 4, "{n}: {out}");
-        // The small arms are proved exactly under the default budget (the Panda's full inertia
-        // tensors take its τ past it: proved at random points).
-        if !n.starts_with("stanford") && !n.starts_with("panda") {
+        // The small arms are proved exactly under the default budget; the Stanford arm, the UR5 and
+        // the Panda (six and seven joints) pass it and are proved at random points.
+        if !["stanford", "ur5", "panda"]
+            .iter()
+            .any(|s| n.starts_with(s))
+        {
             assert_eq!(
                 out.matches("proved [exact]:").count(),
                 4,

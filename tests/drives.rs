@@ -186,3 +186,36 @@ fn bad_drive_fields_are_refused_at_their_place() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_regressor_takes_rotors_and_viscous_friction_and_refuses_coulomb() {
+    use symdyn::algebra::compact::identity::{Outcome, ProofOptions};
+    use symdyn::identify::{
+        base_parameters, BaseOptions, IdentifyError, Regressor, RegressorOptions,
+    };
+    let geared = parse_scene(&scene("elbow_geared")).unwrap().robot;
+    // Coulomb friction's column is not a standard parameter yet: refused, naming the joint.
+    let e = Regressor::build(&geared, RegressorOptions::default()).unwrap_err();
+    assert_eq!(e, IdentifyError::Coulomb(1));
+    // Without it: the elbow's 6 base parameters (counted by hand in tests/regressor.rs), plus Ia2,
+    // fv1 and fv2; Ia1 groups into ZZR1 (joint 1's axis is fixed, so the rotor adds to ZZ1).
+    let mut robot = geared.clone();
+    for d in &mut robot.drives {
+        d.coulomb = symdyn::algebra::Expr::zero();
+    }
+    let reg = Regressor::build(&robot, RegressorOptions::default()).unwrap();
+    let names: Vec<String> = reg.params.iter().map(|p| p.name()).collect();
+    for want in ["Ia1", "fv1", "Ia2", "fv2"] {
+        assert!(names.contains(&want.to_string()), "{names:?}");
+    }
+    assert!(reg
+        .prove_tau(&ProofOptions::default())
+        .iter()
+        .all(|o| matches!(o, Outcome::Equal(_))));
+    let base = base_parameters(&reg, &BaseOptions::default()).unwrap();
+    assert_eq!(base.count(), 9);
+    assert!(base.proved());
+    for alone in ["fv1", "fv2", "Ia2"] {
+        assert!(base.find(alone).is_some(), "{alone} is a base parameter");
+    }
+}

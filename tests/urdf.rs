@@ -1,5 +1,5 @@
 //! URDF input: the UR5 and Panda examples against their DH scenes (identical τ), fixed joints merged
-//! exactly, the chain picked by `--base`/`--tip`, angles snapped (or not) with a warning, every bad
+//! exactly, the chain picked by `--base-link`/`--tip-link`, angles snapped (or not) with a warning, every bad
 //! input an error naming the element and its line (and a non-zero exit through the binary, never a
 //! panic), and every command that takes a scene taking a URDF file, told apart by its content.
 
@@ -218,7 +218,7 @@ fn the_chain_is_picked_by_base_and_tip() {
 </robot>"#;
     let e = urdf_error(tree, &UrdfOptions::default());
     assert!(
-        e.contains("t.urdf:1:1: the tree below `root` has several leaves (`left`, `right`): pick the end of the serial chain with --tip LINK"),
+        e.contains("t.urdf:1:1: the tree below `root` has several leaves (`left`, `right`): pick the end of the serial chain with --tip-link LINK"),
         "{e}"
     );
     let opts = |base: Option<&str>, tip: &str| UrdfOptions {
@@ -250,11 +250,11 @@ fn the_chain_is_picked_by_base_and_tip() {
     for (o, want) in [
         (
             opts(Some("left"), "right"),
-            "link `right` is not below `left`: --tip must be a descendant of --base",
+            "link `right` is not below `left`: --tip-link must be a descendant of --base-link",
         ),
         (
             opts(None, "nowhere"),
-            "--tip names `nowhere`, but no <link> has that name; the links are `root`, `a`, `left`, `right`",
+            "--tip-link names `nowhere`, but no <link> has that name; the links are `root`, `a`, `left`, `right`",
         ),
         (
             opts(Some("left"), "left"),
@@ -425,7 +425,7 @@ fn every_command_takes_a_urdf_file_by_its_content() {
     // --tip and --no-snap reach the reader from any command.
     let (_, err, code) = symdyn(&["check", p, "--tip", "nowhere"]);
     assert_eq!(code, 1);
-    assert!(err.contains("--tip names `nowhere`"), "{err}");
+    assert!(err.contains("--tip-link names `nowhere`"), "{err}");
     let (out, err, code) = symdyn(&["check", p, "--no-snap"]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(out.matches("proved [").count(), 4, "{out}");

@@ -42,7 +42,7 @@ pub enum FrameArg {
 }
 
 thread_local! {
-    /// How this run reads a URDF file (`--base`, `--tip`, `--no-snap`), set once per [`super::run`].
+    /// How this run reads a URDF file (`--base-link`, `--tip-link`, `--no-snap`), set once per [`super::run`].
     static URDF_OPTIONS: RefCell<UrdfOptions> = RefCell::new(UrdfOptions::default());
 }
 

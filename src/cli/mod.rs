@@ -10,7 +10,9 @@ mod codegen_cmd;
 mod derive_cmds;
 mod error;
 mod eval_cmd;
+mod identify_cmd;
 pub mod output;
+mod regressor_cmd;
 mod repl_cmd;
 mod sheet_cmd;
 mod simulate_cmd;
@@ -27,12 +29,18 @@ pub struct Args {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
-    /// URDF input: the first link of the serial chain (default: the tree's root).
-    #[arg(long, global = true, value_name = "LINK")]
-    pub base: Option<String>,
+    /// URDF input: the first link of the serial chain (default: the tree's root). Not `--base`, which
+    /// is the regressor's base parameters.
+    #[arg(long = "base-link", global = true, value_name = "LINK")]
+    pub base_link: Option<String>,
     /// URDF input: the last link of the serial chain (default: the single leaf below the base).
-    #[arg(long, global = true, value_name = "LINK")]
-    pub tip: Option<String>,
+    #[arg(
+        long = "tip-link",
+        visible_alias = "tip",
+        global = true,
+        value_name = "LINK"
+    )]
+    pub tip_link: Option<String>,
     /// URDF input: keep decimal angles exactly as written instead of snapping those within 1e-6 of a
     /// multiple of π/12 … π to it.
     #[arg(long, global = true)]
@@ -104,6 +112,10 @@ pub enum Command {
         /// large robots).
         #[arg(long)]
         brief: bool,
+        /// Add the section "Linear in the inertial parameters": the regressor, the base parameters
+        /// with their expressions, the proofs.
+        #[arg(long)]
+        identification: bool,
     },
     /// Numbers from the derived equations: τ (default), D(q), C(q, q̇), g(q), or the forward dynamics
     /// q̈ = D⁻¹(u − C q̇ − g), for given parameter values and state.
@@ -205,6 +217,53 @@ pub enum Command {
         /// Write the plot of q(t) and the energy error as SVG here.
         #[arg(long, value_name = "FILE.svg")]
         plot: Option<String>,
+    },
+    /// The regressor Y with τ = Y π (proved), and with --base the base inertial parameters: each an
+    /// exact combination of the standard parameters (Khalil's names, XXR2, ZZR1), the rule that put
+    /// it there, and the proof Y_β β = Y π.
+    Regressor {
+        /// The scene file.
+        scene: Option<String>,
+        /// Also the base parameters.
+        #[arg(long)]
+        base: bool,
+        /// Gravity as an input vector [gx, gy, gz] (as generated code taking g needs): a larger count.
+        #[arg(long)]
+        gravity_input: bool,
+        /// Append each joint's rotor inertia Iaj (τ_j += Ia_j q̈_j) to the standard parameters.
+        #[arg(long)]
+        rotors: bool,
+        /// The output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: regressor_cmd::RegressorFormat,
+        /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
+        #[arg(long)]
+        ascii: bool,
+    },
+    /// Least-squares identification of the base parameters from samples q, q̇, q̈, τ in a CSV file (QR,
+    /// condition number, residual, a standard deviation per parameter).
+    Identify {
+        /// The scene file.
+        scene: Option<String>,
+        /// The samples: a header row q1..qN,qd1..qdN,qdd1..qddN,tau1..tauN, then one row per sample.
+        #[arg(long, value_name = "FILE.csv")]
+        data: String,
+        /// Print each base parameter's expression in the standard parameters too.
+        #[arg(long)]
+        base: bool,
+        /// Values of symbolic geometry (and g, and inertial parameters to compare with), name=value.
+        #[arg(
+            long = "set",
+            value_name = "NAME=VALUE,...",
+            allow_hyphen_values = true
+        )]
+        set: Vec<String>,
+        /// The model has rotor inertias Iaj.
+        #[arg(long)]
+        rotors: bool,
+        /// The output format.
+        #[arg(long, value_enum, default_value = "text")]
+        format: identify_cmd::IdentifyFormat,
     },
     /// Benchmarks: derivation times, result sizes, numeric evaluation, peak memory, end-to-end runs and
     /// (with --peers) the SymPy/SymEngine peers; writes results.csv, benchmarks.md and charts (SVG,
@@ -316,8 +375,8 @@ pub enum Command {
 /// Runs one command and returns what it prints.
 pub fn run(args: Args) -> Result<String, CliError> {
     derive_cmds::set_urdf_options(UrdfOptions {
-        base: args.base,
-        tip: args.tip,
+        base: args.base_link,
+        tip: args.tip_link,
         no_snap: args.no_snap,
     });
     match args.command {
@@ -348,6 +407,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             output,
             pdf,
             brief,
+            identification,
         } => sheet_cmd::sheet_cmd(
             scene.as_deref(),
             method,
@@ -355,6 +415,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             output.as_deref(),
             pdf,
             brief,
+            identification,
         ),
         Command::Eval {
             scene,
@@ -421,6 +482,36 @@ pub fn run(args: Args) -> Result<String, CliError> {
             out: output.as_deref(),
             plot: plot.as_deref(),
         }),
+        Command::Regressor {
+            scene,
+            base,
+            gravity_input,
+            rotors,
+            format,
+            ascii,
+        } => regressor_cmd::regressor(regressor_cmd::RegressorArgs {
+            scene: scene.as_deref(),
+            base,
+            gravity_input,
+            rotors,
+            format,
+            ascii,
+        }),
+        Command::Identify {
+            scene,
+            data,
+            base,
+            set,
+            rotors,
+            format,
+        } => identify_cmd::identify(identify_cmd::IdentifyArgs {
+            scene: scene.as_deref(),
+            data: &data,
+            base,
+            set: &set,
+            rotors,
+            format,
+        }),
         Command::Bench {
             quick,
             out,
@@ -458,5 +549,16 @@ pub fn run(args: Args) -> Result<String, CliError> {
             float,
             ascii,
         } => algebra_cmds::subs(&expr, &assignments, float, ascii),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// clap's own consistency checks over every command (unique names and ids, also of the global
+    /// options that every command inherits: a clash is a panic at run time otherwise).
+    #[test]
+    fn the_command_line_is_consistent() {
+        use clap::CommandFactory;
+        super::Args::command().debug_assert();
     }
 }

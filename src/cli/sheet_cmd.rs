@@ -37,6 +37,7 @@ pub fn sheet_cmd(
     output: Option<&str>,
     pdf: bool,
     brief: bool,
+    identification: bool,
 ) -> Result<String, CliError> {
     if pdf && output.is_none() {
         return Err(CliError::Input(
@@ -57,7 +58,10 @@ pub fn sheet_cmd(
         },
         scope: if brief { Scope::Brief } else { Scope::Full },
     };
-    let tex = sheet(&der, &opts);
+    let mut tex = sheet(&der, &opts);
+    if identification {
+        tex = symdyn::sheet::identification::with_identification(&der, &tex);
+    }
     let Some(path) = output else {
         return Ok(tex);
     };

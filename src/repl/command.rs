@@ -21,6 +21,8 @@ pub const COMMANDS: &[&str] = &[
     "ne",
     "inertia",
     "facts",
+    "regressor",
+    "base",
     "simplify",
     "expand",
     "diff",
@@ -114,6 +116,10 @@ pub enum Command {
     Inertia(String),
     /// `facts`.
     Facts,
+    /// `regressor` or `regressor k`: the regressor Y (τ = Y π), or its row `k`.
+    Regressor(Option<usize>),
+    /// `base` or `base NAME`: the base parameters, or one of them.
+    Base(Option<String>),
     /// `simplify EXPR`.
     Simplify(String),
     /// `expand EXPR`.
@@ -150,6 +156,8 @@ pub fn usage(name: &str) -> String {
         "T" => "T i",
         "R" => "R i",
         "eom" => "eom  or  eom k",
+        "regressor" => "regressor  or  regressor k",
+        "base" => "base  or  base NAME  (e.g. base ZZR1)",
         "ne" => "ne body|inertial omega|alpha|a_c|a_e|g|f|n|tau i",
         "inertia" => {
             "inertia box(x,y,z)|cylinder(r,h[,x|y|z])|rod(l[,x|y|z])|sphere(r) mass M [at [x,y,z]]"
@@ -293,6 +301,16 @@ pub fn parse(line: &str) -> Result<Command, ReplError> {
         "Jw" => Ok(Command::Jw(one_index(name, &args)?)),
         "T" => Ok(Command::T(one_index(name, &args)?)),
         "R" => Ok(Command::R(one_index(name, &args)?)),
+        "regressor" => match args[..] {
+            [] => Ok(Command::Regressor(None)),
+            [k] => Ok(Command::Regressor(Some(index(k, name)?))),
+            _ => Err(usage_err(name)),
+        },
+        "base" => match args[..] {
+            [] => Ok(Command::Base(None)),
+            [b] => Ok(Command::Base(Some(b.to_string()))),
+            _ => Err(usage_err(name)),
+        },
         "eom" => match args[..] {
             [] => Ok(Command::Eom(None)),
             [k] => Ok(Command::Eom(Some(index(k, name)?))),

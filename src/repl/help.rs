@@ -14,6 +14,8 @@ Scene queries (indices from 1; the built-in PPP arm until `load`):
   ne body f 1, ne inertial a_c 3   Newton–Euler omega alpha a_c a_e g f n tau
   inertia box(1/4,1,1/4) mass 1 at [0,1/2,0]   also cylinder(r,h[,axis]) rod(l[,axis]) sphere(r)
   facts                     what is structurally zero
+  regressor, regressor 2    the regressor Y (tau = Y pi, proved), one row of it
+  base, base ZZR1           the base inertial parameters (exact, proved), one of them
 Expressions (user variables are substituted first; D[i,j], C[i,j], g[k], tau[k] are the scene's):
   simplify sin(q1)^2 + cos(q1)^2      expand (a+b)*(a-b)      simplify D[1,1] - D[2,2]
   diff m2*lc2^2*sin(q2)^2 q2          dt sin(q1)*qd2

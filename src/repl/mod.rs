@@ -6,7 +6,8 @@
 //! text to [`Session::load_scene_text`]. The `symdyn repl` binary is a thin loop over this API.
 //!
 //! - `command`: a line as a [`Command`]; `answer`: the scene queries; `algebra`: the expression
-//!   commands and user variables; `refs`: scene quantities inside expressions (`D[1,1]`); `complete`: tab completion; `help`: the help text.
+//!   commands and user variables; `refs`: scene quantities inside expressions (`D[1,1]`); `complete`: tab completion; `help`: the help text; `identify`: the regressor and the base
+//!   parameters.
 
 mod algebra;
 mod answer;
@@ -14,6 +15,7 @@ pub mod command;
 mod complete;
 mod error;
 mod help;
+mod identify;
 mod refs;
 #[cfg(test)]
 mod tests;
@@ -150,6 +152,7 @@ impl Session {
             | Command::Ne(..)
             | Command::Inertia(_)
             | Command::Facts => self.query(&cmd),
+            Command::Regressor(_) | Command::Base(_) => self.identification(&cmd),
         }
     }
 

@@ -6,12 +6,14 @@
 //!   kept on the page;
 //! - `scene`: the DH table, masses, centres of mass, gravity, inputs, transforms, inertia;
 //! - `lagrange`: `J_v,i`, `J_ω,i`, `D(q)`, Christoffel symbols, `P`, `g(q)`, the equations;
-//! - `newton_euler`: the forward and backward recursions per frame and the equations.
+//! - `newton_euler`: the forward and backward recursions per frame and the equations;
+//! - [`identification`]: "Linear in the inertial parameters" (`symdyn sheet --identification`).
 //!
 //! The document uses only `amsmath`, `amssymb`, `geometry` and `booktabs` (TeX Live's
 //! `texlive-latex-base` and `texlive-latex-recommended`).
 
 mod compact;
+pub mod identification;
 mod lagrange;
 mod lagrange_compact;
 pub use crate::print::layout;

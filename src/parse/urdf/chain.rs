@@ -1,4 +1,4 @@
-//! From the tree of links and joints to a serial [`Robot`]: pick the chain from `--base` to `--tip`,
+//! From the tree of links and joints to a serial [`Robot`]: pick the chain from `--base-link` to `--tip-link`,
 //! turn each moving joint into a placed joint (`q1 … qN` from base to tip, inputs named after the
 //! joints), and merge every link held by fixed joints into the moving link it rides on, exactly:
 //! masses add, the centre of mass is the mass-weighted mean, and each inertia is rotated into the
@@ -164,7 +164,7 @@ pub(super) fn robot(
         .filter(|&l| tree.parent[l].is_none())
         .collect();
     let base = match &opts.base {
-        Some(b) => tree.link(source, "base", b)?,
+        Some(b) => tree.link(source, "base-link", b)?,
         None => match roots.as_slice() {
             [one] => *one,
             _ => {
@@ -179,7 +179,7 @@ pub(super) fn robot(
     };
     let base_name = file.links[base].name.clone();
     let tip = match &opts.tip {
-        Some(t) => tree.link(source, "tip", t)?,
+        Some(t) => tree.link(source, "tip-link", t)?,
         None => match tree.leaves(base).as_slice() {
             [one] => *one,
             many => {

@@ -127,10 +127,10 @@ pub enum UrdfErrorKind {
     /// More than one root.
     #[error("several links have no parent ({0}): a URDF tree has one root")]
     SeveralRoots(String),
-    /// `--base` or `--tip` names no link.
+    /// `--base-link` or `--tip-link` names no link.
     #[error("--{option} names `{name}`, but no <link> has that name; the links are {known}")]
     UnknownChainLink {
-        /// `base` or `tip`.
+        /// `base-link` or `tip-link`.
         option: &'static str,
         /// The name given.
         name: String,
@@ -138,15 +138,15 @@ pub enum UrdfErrorKind {
         known: String,
     },
     /// Several leaves and no `--tip`.
-    #[error("the tree below `{base}` has several leaves ({leaves}): pick the end of the serial chain with --tip LINK")]
+    #[error("the tree below `{base}` has several leaves ({leaves}): pick the end of the serial chain with --tip-link LINK")]
     SeveralLeaves {
         /// The base link.
         base: String,
         /// The leaves.
         leaves: String,
     },
-    /// `--tip` is not below `--base`.
-    #[error("link `{tip}` is not below `{base}`: --tip must be a descendant of --base")]
+    /// `--tip-link` is not below `--base-link`.
+    #[error("link `{tip}` is not below `{base}`: --tip-link must be a descendant of --base-link")]
     NotBelow {
         /// The base link.
         base: String,

@@ -28,7 +28,7 @@ use read::Reader;
 /// How to read a URDF file.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct UrdfOptions {
-    /// The first link of the chain (`--base`); the root by default.
+    /// The first link of the chain (`--base-link`); the root by default.
     pub base: Option<String>,
     /// The last link of the chain (`--tip`); the single leaf below the base by default.
     pub tip: Option<String>,
