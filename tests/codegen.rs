@@ -164,6 +164,7 @@ fn exact(robot: &Robot, parameters: &[Symbol], pt: &Point, what: What) -> Vec<f6
         What::G => cd.g.iter().collect(),
         What::C => cd.c.iter().flatten().collect(),
         What::Qdd => unreachable!("checked through tau"),
+        What::Y => unreachable!("checked by Y beta = tau"),
     };
     // Opaque atoms (sgn(q̇_i) of Coulomb friction) take the rates' values.
     let rates: HashMap<Symbol, Expr> = (0..n)
@@ -636,4 +637,131 @@ fn bad_input_is_refused_and_nothing_is_half_written() {
     assert_eq!(m["functions"].as_array().map(Vec::len), Some(2));
     assert!(good.join("ppp_cartesian_manipulator.h").exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The generated base regressor `Y` (issue 10's β): at random states `Y β = τ`, with `Y` and `τ` both
+/// from the generated code and `β` the base parameters' values from `symdyn::identify` (the scene's
+/// masses, centres of mass and inertias grouped by the proved combinations); the C compiles cleanly.
+#[test]
+fn the_base_regressor_times_the_base_parameters_is_tau() {
+    use symdyn::identify::{base_parameters, BaseOptions, Regressor, RegressorOptions};
+    for (k, name) in ["elbow", "puma560", "puma560_symbolic"].iter().enumerate() {
+        let robot = example(name);
+        let mut rng = Rng::new(900 + k as u64);
+        let set: BTreeMap<Symbol, Expr> = BTreeMap::new();
+        let g = generate(
+            &robot,
+            &Options {
+                lang: Lang::Python,
+                what: vec![What::Tau, What::Y],
+                prefix: "gen".into(),
+                set: set.clone(),
+            },
+        )
+        .unwrap();
+        let nb = g.base_parameters.len();
+        assert!(nb > 0, "{name}");
+        // Parameter values: lengths and masses in [0.5, 1.5), g = 9.81.
+        let values: HashMap<Symbol, f64> = symdyn::numeric::robot_parameters(&robot)
+            .into_iter()
+            .map(|s| {
+                let v = if s == Symbol::new("g") {
+                    9.81
+                } else {
+                    rng.range(0.5, 1.5)
+                };
+                (s, v)
+            })
+            .collect();
+        let p: Vec<f64> = g
+            .parameters
+            .iter()
+            .map(|s| values[&Symbol::new(s)])
+            .collect();
+        let reg = Regressor::build(&robot, RegressorOptions::default()).unwrap();
+        let bp = base_parameters(&reg, &BaseOptions::default()).unwrap();
+        let names: Vec<String> = bp.base.iter().map(|b| b.name.clone()).collect();
+        let got: Vec<String> = g.base_parameters.iter().map(|(n, _)| n.clone()).collect();
+        assert_eq!(
+            names, got,
+            "{name}: the header lists the base parameters in order"
+        );
+        let beta: Vec<f64> = bp
+            .scene_values(&reg)
+            .unwrap()
+            .iter()
+            .map(|v| symdyn::algebra::eval_f64(&v.to_expr(), &values).unwrap())
+            .collect();
+        let dir = tmpdir(&format!("y-{name}"));
+        for (f, text) in &g.files {
+            std::fs::write(dir.join(f), text).unwrap();
+        }
+        let n = robot.dof();
+        let mut script = String::from("import gen\n");
+        let mut states = Vec::new();
+        for _ in 0..3 {
+            let q: Vec<f64> = (0..n).map(|_| rng.range(-3.0, 3.0)).collect();
+            let qd: Vec<f64> = (0..n).map(|_| rng.range(-2.0, 2.0)).collect();
+            let qdd: Vec<f64> = (0..n).map(|_| rng.range(-2.0, 2.0)).collect();
+            script.push_str(&format!(
+                "p = [{}]\nq = [{}]\nqd = [{}]\nqdd = [{}]\nfor x in gen.tau(p, q, qd, qdd): print(repr(x))\nfor row in gen.Y(p, q, qd, qdd):\n    for x in row: print(repr(x))\n",
+                nums(&p), nums(&q), nums(&qd), nums(&qdd)
+            ));
+            states.push(());
+        }
+        std::fs::write(dir.join("drive.py"), script).unwrap();
+        if !tool("python3", &["--version"]) {
+            return;
+        }
+        let out = run(
+            Command::new("python3").arg("drive.py").current_dir(&dir),
+            "python3 drive.py",
+        );
+        let v: Vec<f64> = out.lines().map(|l| l.parse().unwrap()).collect();
+        assert_eq!(v.len(), states.len() * (n + n * nb), "{name}");
+        for chunk in v.chunks(n + n * nb) {
+            let (tau, y) = chunk.split_at(n);
+            for i in 0..n {
+                let yb: f64 = (0..nb).map(|c| y[i * nb + c] * beta[c]).sum();
+                let scale = 1.0 + tau.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                assert!(
+                    (yb - tau[i]).abs() < 1e-9 * scale,
+                    "{name} row {i}: Y beta = {yb}, tau = {}",
+                    tau[i]
+                );
+            }
+        }
+        // The same in C, compiled with every warning an error.
+        if name == &"elbow" && tool("cc", &["--version"]) {
+            let c = generate(
+                &robot,
+                &Options {
+                    lang: Lang::C,
+                    what: vec![What::Tau, What::Y],
+                    prefix: "gen".into(),
+                    set: set.clone(),
+                },
+            )
+            .unwrap();
+            for (f, text) in &c.files {
+                std::fs::write(dir.join(f), text).unwrap();
+                assert!(!f.ends_with(".h") || text.contains(&format!("#define GEN_NB {nb}")));
+            }
+            run(
+                Command::new("cc")
+                    .args([
+                        "-std=c99",
+                        "-Wall",
+                        "-Wextra",
+                        "-pedantic",
+                        "-Werror",
+                        "-c",
+                        "gen.c",
+                    ])
+                    .current_dir(&dir),
+                "cc gen.c",
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

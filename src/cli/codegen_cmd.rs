@@ -58,7 +58,7 @@ fn whats(what: &[String]) -> Result<Vec<What>, CliError> {
         let item = item.trim();
         let w = What::parse(item).ok_or_else(|| {
             input(format!(
-                "--what {item}: unknown quantity; give tau, M, h, g, C or qdd (comma-separated)"
+                "--what {item}: unknown quantity; give tau, M, h, g, C, qdd or Y (comma-separated)"
             ))
         })?;
         out.push(w);
@@ -76,6 +76,7 @@ pub fn manifest(g: &Generated, files: Value) -> Value {
         "prefix": g.prefix,
         "n": g.n,
         "parameters": g.parameters,
+        "base_parameters": g.base_parameters.iter().map(|(n, e)| json!({"name": n, "expression": e})).collect::<Vec<_>>(),
         "functions": g.functions.iter().map(|f| json!({
             "name": f.name,
             "what": f.what.name(),

@@ -155,7 +155,7 @@ pub enum Command {
         /// The language.
         #[arg(long, value_enum, default_value = "c")]
         lang: codegen_cmd::LangArg,
-        /// The quantities, comma-separated: tau, M, h, g, C, qdd (default tau).
+        /// The quantities, comma-separated: tau, M, h, g, C, qdd, Y (the base regressor) (default tau).
         #[arg(long, value_name = "WHAT,...")]
         what: Vec<String>,
         /// Parameter values folded in exactly, name=value comma-separated; the others are inputs p.

@@ -7,6 +7,7 @@ use crate::dynamics::compact::{arena_for, christoffel, crba, potential};
 use crate::dynamics::kinematics::{joint_frame, JointFrame};
 use crate::dynamics::model::Robot;
 use crate::dynamics::ne_compact::{tau_into, Motion};
+use crate::identify::{base_parameters, BaseOptions, Regressor, RegressorOptions};
 use crate::numeric::robot_parameters;
 use std::collections::{BTreeMap, HashMap};
 
@@ -25,6 +26,8 @@ pub struct Built {
     /// The potential energy `P(q)` when asked for ([`build_with_potential`]; numeric use only,
     /// never emitted as code).
     pub potential: Option<Poly>,
+    /// The base parameters of `Y`, `(name, expression)`, when `Y` is asked for.
+    pub base: Vec<(String, String)>,
 }
 
 /// `robot` with `values` substituted into every expression; each value must be a constant and each
@@ -76,7 +79,32 @@ pub fn build(
     let robot = fold(robot, values)?;
     let n = robot.dof();
     let joints: Vec<JointFrame> = (1..=n).map(|i| joint_frame(&robot, i)).collect();
-    let mut arena = arena_for(&robot);
+    // The base regressor first: its arena (the regressor's named intermediates) is the one every
+    // other quantity is then built into.
+    let mut base = Vec::new();
+    let mut y_rows: Option<Vec<Poly>> = None;
+    let mut arena = if what.contains(&What::Y) {
+        let reg = Regressor::build(&robot, RegressorOptions::default())
+            .map_err(|e| CodegenError::Regressor(e.to_string()))?;
+        let bp = base_parameters(&reg, &BaseOptions::default())
+            .map_err(|e| CodegenError::Regressor(e.to_string()))?;
+        if !bp.proved() {
+            return Err(CodegenError::Regressor(
+                "the base parameters of this robot are not proved (symbolic twists); see symdyn regressor --base".into(),
+            ));
+        }
+        for p in &bp.base {
+            let expr = bp.expression(p, &reg.params).map_or_else(
+                || p.name.clone(),
+                |e| crate::print::poly::poly_to_string(&e, crate::print::Style::Ascii),
+            );
+            base.push((p.name.clone(), expr));
+        }
+        y_rows = Some(bp.base_regressor(&reg).into_iter().flatten().collect());
+        reg.arena
+    } else {
+        arena_for(&robot)
+    };
     let mut d: Option<Vec<Vec<Poly>>> = None;
     let mut h: Option<Vec<Poly>> = None;
     let mut outputs = Vec::new();
@@ -113,6 +141,7 @@ pub fn build(
                     .clone();
                 dm.into_iter().flatten().chain(hv).collect()
             }
+            What::Y => y_rows.clone().unwrap_or_default(),
         };
         outputs.push((w, out));
     }
@@ -123,6 +152,7 @@ pub fn build(
         parameters,
         outputs,
         potential: None,
+        base,
     })
 }
 

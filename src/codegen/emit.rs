@@ -14,6 +14,7 @@ fn inputs(what: What) -> Vec<&'static str> {
         What::M | What::G => vec!["p", "q"],
         What::H | What::C => vec!["p", "q", "qd"],
         What::Qdd => vec!["p", "q", "qd", "u"],
+        What::Y => vec!["p", "q", "qd", "qdd"],
     }
 }
 
@@ -26,6 +27,7 @@ fn fname(what: What) -> &'static str {
         What::G => "g",
         What::C => "C",
         What::Qdd => "qdd",
+        What::Y => "Y",
     }
 }
 
@@ -242,15 +244,30 @@ pub fn emit(built: &Built, lw: &Lowered, lang: Lang, prefix: &str) -> Generated 
                 .join(", ")
         }
     );
+    let head = if built.base.is_empty() {
+        head
+    } else {
+        let list: Vec<String> = built
+            .base
+            .iter()
+            .enumerate()
+            .map(|(k, (name, expr))| format!("  {k} {name} = {expr}"))
+            .collect();
+        format!(
+            "{head}\nThe base parameters beta[k] of Y (tau = Y beta), in order:\n{}",
+            list.join("\n")
+        )
+    };
+    let nb = built.base.len();
     let files = match lang {
-        Lang::C => c_files(prefix, n, np, &head, &parameters, &bodies),
+        Lang::C => c_files(prefix, n, np, nb, &head, &parameters, &bodies),
         Lang::Rust => vec![(
             format!("{prefix}.rs"),
-            rust_file(n, np, &head, &parameters, &bodies),
+            rust_file(n, np, nb, &head, &parameters, &bodies),
         )],
         Lang::Python => vec![(
             format!("{prefix}.py"),
-            python_file(n, np, &head, &parameters, &bodies),
+            python_file(n, np, nb, &head, &parameters, &bodies),
         )],
     };
     Generated {
@@ -258,6 +275,7 @@ pub fn emit(built: &Built, lw: &Lowered, lang: Lang, prefix: &str) -> Generated 
         n,
         parameters,
         functions,
+        base_parameters: built.base.clone(),
         files,
     }
 }
@@ -276,10 +294,10 @@ fn comment_block(text: &str, open: &str, line: &str, close: &str) -> String {
 fn c_signature(prefix: &str, what: What, np: usize) -> String {
     let up = prefix.to_ascii_uppercase();
     let out = fname(what);
-    let size = if matches!(what, What::M | What::C) {
-        format!("{up}_N * {up}_N")
-    } else {
-        format!("{up}_N")
+    let size = match what {
+        What::M | What::C => format!("{up}_N * {up}_N"),
+        What::Y => format!("{up}_N * {up}_NB"),
+        _ => format!("{up}_N"),
     };
     let mut args = vec![format!("double {out}[{size}]")];
     for a in inputs(what) {
@@ -300,6 +318,7 @@ fn c_files(
     prefix: &str,
     n: usize,
     np: usize,
+    nb: usize,
     head: &str,
     parameters: &[String],
     bodies: &[(What, Body)],
@@ -309,6 +328,11 @@ fn c_files(
     h.push_str(&format!(
         "#ifndef {up}_H\n#define {up}_H\n\n#define {up}_N {n}\n#define {up}_NP {np}\n\n"
     ));
+    if nb > 0 {
+        h.push_str(&format!(
+            "/* The base parameters of Y. */\n#define {up}_NB {nb}\n\n"
+        ));
+    }
     if !parameters.is_empty() {
         h.push_str(&format!(
             "/* The names of p[0 .. {up}_NP - 1]. */\nextern const char *const {prefix}_parameters[{up}_NP];\n\n"
@@ -356,6 +380,7 @@ fn c_files(
 fn rust_file(
     n: usize,
     np: usize,
+    nb: usize,
     head: &str,
     parameters: &[String],
     bodies: &[(What, Body)],
@@ -369,6 +394,11 @@ fn rust_file(
     s.push_str(&format!(
         "/// Joints.\npub const N: usize = {n};\n/// Parameters.\npub const NP: usize = {np};\n"
     ));
+    if nb > 0 {
+        s.push_str(&format!(
+            "/// Base parameters (the columns of `y`).\npub const NB: usize = {nb};\n"
+        ));
+    }
     let names: Vec<String> = parameters.iter().map(|p| format!("\"{p}\"")).collect();
     s.push_str(&format!(
         "/// The names of `p[0 .. NP]`.\npub const PARAMETERS: [&str; NP] = [{}];\n\n",
@@ -381,10 +411,10 @@ fn rust_file(
         ));
     }
     for (what, b) in bodies {
-        let size = if matches!(what, What::M | What::C) {
-            "N * N"
-        } else {
-            "N"
+        let size = match what {
+            What::M | What::C => "N * N",
+            What::Y => "N * NB",
+            _ => "N",
         };
         let args: Vec<String> = inputs(*what)
             .into_iter()
@@ -415,6 +445,7 @@ fn rust_file(
 fn python_file(
     n: usize,
     np: usize,
+    nb: usize,
     head: &str,
     parameters: &[String],
     bodies: &[(What, Body)],
@@ -422,7 +453,11 @@ fn python_file(
     let mut s = format!("\"\"\"{head}\n\nPlain functions of sequences (lists, tuples or NumPy arrays); math only.\n\"\"\"\n\nimport math\n\n");
     s.push_str(&format!("N = {n}\nNP = {np}\n"));
     let names: Vec<String> = parameters.iter().map(|p| format!("\"{p}\"")).collect();
-    s.push_str(&format!("PARAMETERS = [{}]\n\n", names.join(", ")));
+    s.push_str(&format!("PARAMETERS = [{}]\n", names.join(", ")));
+    if nb > 0 {
+        s.push_str(&format!("NB = {nb}\n"));
+    }
+    s.push('\n');
     for (what, b) in bodies {
         s.push_str(&format!(
             "\ndef {}({}):\n    \"\"\"{}.\n\n    Cost: {}.\n    \"\"\"\n",
@@ -434,10 +469,11 @@ fn python_file(
         for (i, rhs) in &b.statements {
             s.push_str(&format!("    t{i} = {rhs}\n"));
         }
-        if matches!(what, What::M | What::C) {
+        if matches!(what, What::M | What::C | What::Y) {
+            let width = if *what == What::Y { nb } else { n };
             let rows: Vec<String> = b
                 .outputs
-                .chunks(n.max(1))
+                .chunks(width.max(1))
                 .map(|r| format!("[{}]", r.join(", ")))
                 .collect();
             s.push_str(&format!("    return [{}]\n", rows.join(", ")));

@@ -63,10 +63,13 @@ pub enum What {
     C,
     /// `q̈ = D(q)⁻¹ (u − h(q, q̇))`, the forward dynamics.
     Qdd,
+    /// `Y_β(q, q̇, q̈)`, the base regressor (`τ = Y_β β`, [`crate::identify`]), row-major `N × NB`.
+    Y,
 }
 
 impl What {
-    /// Every quantity, in the order functions are emitted.
+    /// The dynamics' quantities, in the order functions are emitted (the base regressor [`What::Y`]
+    /// comes after them).
     pub const ALL: [What; 6] = [What::Tau, What::M, What::H, What::G, What::C, What::Qdd];
 
     /// The name on the command line and in the manifest: `tau`, `M`, `h`, `g`, `C`, `qdd`.
@@ -78,12 +81,16 @@ impl What {
             What::G => "g",
             What::C => "C",
             What::Qdd => "qdd",
+            What::Y => "Y",
         }
     }
 
     /// The quantity of a name.
     pub fn parse(s: &str) -> Option<What> {
-        What::ALL.into_iter().find(|w| w.name() == s)
+        What::ALL
+            .into_iter()
+            .chain([What::Y])
+            .find(|w| w.name() == s)
     }
 
     /// A sentence saying what the function computes.
@@ -95,6 +102,7 @@ impl What {
             What::G => "the gravity vector g(q), by Newton-Euler with qd = qdd = 0",
             What::C => "the Coriolis matrix C(q, qd) of the Christoffel symbols (Spong et al. 7.4; Ddot - 2C is skew), row-major",
             What::Qdd => "the forward dynamics qdd = D(q)^-1 (u - h(q, qd)), by an unrolled L diag(d) L^T factorisation of D(q)",
+            What::Y => "the base regressor Y(q, qd, qdd), row-major N x NB, tau = Y beta for the base parameters beta listed above (proved by symdyn regressor --base)",
         }
     }
 }
@@ -153,6 +161,8 @@ pub struct Generated {
     pub parameters: Vec<String>,
     /// The functions.
     pub functions: Vec<FunctionInfo>,
+    /// The base parameters of `Y`, `(name, expression in the standard parameters)`, when asked for.
+    pub base_parameters: Vec<(String, String)>,
     /// File names and contents.
     pub files: Vec<(String, String)>,
 }
@@ -182,8 +192,11 @@ pub enum CodegenError {
     )]
     BadPrefix(String),
     /// No quantity asked for.
-    #[error("nothing to generate: give at least one of tau, M, h, g, C, qdd")]
+    #[error("nothing to generate: give at least one of tau, M, h, g, C, qdd, Y")]
     Nothing,
+    /// The base regressor could not be built (see `symdyn regressor --base`).
+    #[error("Y: {0}")]
+    Regressor(String),
     /// The scene with the values folded in is not a valid robot.
     #[error(transparent)]
     Model(#[from] ModelError),
