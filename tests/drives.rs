@@ -188,34 +188,58 @@ fn bad_drive_fields_are_refused_at_their_place() {
 }
 
 #[test]
-fn the_regressor_takes_rotors_and_viscous_friction_and_refuses_coulomb() {
+fn the_regressor_takes_the_rotors_and_the_friction() {
     use symdyn::algebra::compact::identity::{Outcome, ProofOptions};
-    use symdyn::identify::{
-        base_parameters, BaseOptions, IdentifyError, Regressor, RegressorOptions,
-    };
+    use symdyn::identify::{base_parameters, BaseOptions, Regressor, RegressorOptions};
     let geared = parse_scene(&scene("elbow_geared")).unwrap().robot;
-    // Coulomb friction's column is not a standard parameter yet: refused, naming the joint.
-    let e = Regressor::build(&geared, RegressorOptions::default()).unwrap_err();
-    assert_eq!(e, IdentifyError::Coulomb(1));
-    // Without it: the elbow's 6 base parameters (counted by hand in tests/regressor.rs), plus Ia2,
-    // fv1 and fv2; Ia1 groups into ZZR1 (joint 1's axis is fixed, so the rotor adds to ZZ1).
-    let mut robot = geared.clone();
-    for d in &mut robot.drives {
-        d.coulomb = symdyn::algebra::Expr::zero();
-    }
-    let reg = Regressor::build(&robot, RegressorOptions::default()).unwrap();
+    let reg = Regressor::build(&geared, RegressorOptions::default()).unwrap();
     let names: Vec<String> = reg.params.iter().map(|p| p.name()).collect();
-    for want in ["Ia1", "fv1", "Ia2", "fv2"] {
+    for want in ["Ia1", "fv1", "fc1", "Ia2", "fv2", "fc2"] {
         assert!(names.contains(&want.to_string()), "{names:?}");
     }
     assert!(reg
         .prove_tau(&ProofOptions::default())
         .iter()
         .all(|o| matches!(o, Outcome::Equal(_))));
+    // The elbow's 6 base parameters (counted by hand in tests/regressor.rs), plus Ia2 and the four
+    // friction coefficients; Ia1 groups into ZZR1 (joint 1's axis is fixed, so its rotor adds to ZZ1).
     let base = base_parameters(&reg, &BaseOptions::default()).unwrap();
-    assert_eq!(base.count(), 9);
+    assert_eq!(base.count(), 11);
     assert!(base.proved());
-    for alone in ["fv1", "fv2", "Ia2"] {
+    for alone in ["fv1", "fc1", "fv2", "fc2", "Ia2"] {
         assert!(base.find(alone).is_some(), "{alone} is a base parameter");
     }
+    assert!(base.find("Ia1").is_none() && base.find("ZZR1").is_some());
+}
+
+#[test]
+fn a_large_arm_with_friction_is_proved_at_random_points() {
+    // The all-symbolic PUMA 560 is past the exact budget: its proofs are randomized, and sgn(q̇_i)
+    // is a variable of its own there (it must get a value even where its terms cancel).
+    let text = scene("puma560_symbolic")
+        .lines()
+        .map(
+            |l| match l.split_whitespace().take(2).collect::<Vec<_>>()[..] {
+                ["joint", "1"] => format!("{l}  viscous=B1 coulomb=fc1"),
+                ["joint", "4"] => format!("{l}  gear=r4 rotor=Jm4 coulomb=fc4"),
+                _ => l.to_string(),
+            },
+        )
+        .collect::<Vec<_>>()
+        .join("\n");
+    let dir = std::env::temp_dir().join(format!("symdyn-drives-puma-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("puma_friction.scene");
+    std::fs::write(&path, text).unwrap();
+    let o = symdyn(&["check", path.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{out}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(out.matches("proved [randomized").count(), 3, "{out}");
+    assert_eq!(out.matches("proved [").count(), 4, "{out}");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -180,6 +180,13 @@ pub fn other(e: &Expr) -> AtomId {
     make(Class::Other, serial_of(Atom::Other(e.clone())))
 }
 
+/// Whether an id is `sgn(x)` (an opaque atom): a variable like a symbol for degree bounds and
+/// evaluation at points (the identities that hold for every value of it hold for its values ±1, 0).
+pub fn is_sign(id: AtomId) -> bool {
+    class(id) == Class::Other
+        && matches!(lookup(id), Atom::Other(e) if matches!(e.kind(), crate::algebra::Kind::Fun(crate::algebra::Func::Sgn, _)))
+}
+
 /// `cos x` for `sin x` and back (also for the constant base `π/L`).
 pub fn partner(id: AtomId) -> AtomId {
     match class(id) {

@@ -209,7 +209,8 @@ impl<'a> Sampler<'a> {
         let (mut state, mut lengths, mut fixed, mut angles) = (vec![], vec![], vec![], vec![]);
         for v in vars {
             let s = atom::symbol_of(v);
-            let is_state = s.as_ref().is_some_and(|s| s.is_coord() || input(s));
+            // sgn(q̇_j) of Coulomb friction varies with the state like q̇_j.
+            let is_state = s.as_ref().is_some_and(|s| s.is_coord() || input(s)) || atom::is_sign(v);
             if is_state {
                 state.push(v);
             } else if is_angle(v) {
@@ -251,6 +252,7 @@ impl<'a> Sampler<'a> {
                 &self.outputs,
                 &mut |id| match atom::class(id) {
                     Class::Param | Class::Coord => point.get(&id).copied(),
+                    Class::Other if atom::is_sign(id) => point.get(&id).copied(),
                     Class::Sin | Class::Cos => {
                         let key = if atom::class(id) == Class::Sin {
                             id
@@ -318,6 +320,11 @@ fn monomial_poly(e: &[u32], vars: &[Var]) -> Poly {
 /// The rule that grouped standard parameter `p` of link `j`.
 fn rule(reg: &Regressor, p: &StandardParam) -> String {
     let j = p.link;
+    if p.quantity == Quantity::Fc {
+        return format!(
+            "friction {j}: fc{j} sgn(q̇{j}) is a column that other parameters already give"
+        );
+    }
     if p.quantity == Quantity::Fv {
         return format!("friction {j}: fv{j} q̇{j} is a column that other parameters already give");
     }

@@ -25,9 +25,6 @@ pub enum IdentifyError {
     /// The fit is refused: too few samples or a badly exciting trajectory.
     #[error("{0}")]
     Fit(String),
-    /// Coulomb friction `f_c sgn(q̇_j)`: its column is not yet among the standard parameters.
-    #[error("joint {0} states Coulomb friction: the regressor does not take its column fc{0} sgn(q̇{0}) yet (viscous friction and rotor inertias it does); leave coulomb= out to identify the rest")]
-    Coulomb(usize),
     /// A parameter without a value where a number is needed.
     #[error("no value for {0}: give it with --set {0}=...")]
     Unbound(String),

@@ -113,9 +113,6 @@ impl Regressor {
         let n = model.dof();
         let joints: Vec<JointFrame> = (1..=n).map(|i| joint_frame(&model, i)).collect();
         let mut arena = arena_for(&model);
-        if let Some(j) = (1..=n).find(|&j| !model.drive(j).coulomb.is_zero()) {
-            return Err(IdentifyError::Coulomb(j));
-        }
         let params = standard_params(&model, options.rotors);
         let y = columns(&model, &joints, &mut arena, &params);
         let mut tau = tau_into(&model, &joints, &mut arena, Motion::Full);
@@ -299,6 +296,11 @@ fn columns(
         }
         if p.quantity == Quantity::Fv {
             y[j - 1][k] = Poly::symbol(&Symbol::qd(j as u32));
+            continue;
+        }
+        if p.quantity == Quantity::Fc {
+            let sgn = crate::algebra::Expr::sgn(&crate::algebra::Expr::sym(Symbol::qd(j as u32)));
+            y[j - 1][k] = crate::algebra::to_poly(&sgn);
             continue;
         }
         let (mut f, mut nm) = wrench(&motion[j - 1], p.quantity);

@@ -6,7 +6,8 @@
 //! `j`), `MXj, MYj, MZj` (the first moments `m_j r_j`, `r_j` the centre of mass in frame `j`), `Mj`
 //! (the mass), then the rotor inertia `Iaj` of joint `j` (the simple model `τ_j += Ia_j q̈_j`, gear
 //! ratio folded in: the scene's `gear² · rotor`) when the scene states one or it is asked for, and the
-//! viscous friction `fvj` (`τ_j += fv_j q̇_j`) when the scene states it.
+//! viscous friction `fvj` (`τ_j += fv_j q̇_j`) and Coulomb friction `fcj` (`τ_j += fc_j sgn(q̇_j)`)
+//! when the scene states them.
 
 use crate::algebra::{to_poly, Poly, Symbol};
 use crate::dynamics::Robot;
@@ -38,6 +39,8 @@ pub enum Quantity {
     Ia,
     /// `fv`: viscous friction of the joint.
     Fv,
+    /// `fc`: Coulomb friction of the joint.
+    Fc,
 }
 
 impl Quantity {
@@ -70,6 +73,7 @@ impl Quantity {
             Quantity::M => "M",
             Quantity::Ia => "Ia",
             Quantity::Fv => "fv",
+            Quantity::Fc => "fc",
         }
     }
 
@@ -77,7 +81,7 @@ impl Quantity {
     pub fn length_dimension(self) -> u32 {
         match self {
             Quantity::Mx | Quantity::My | Quantity::Mz => 1,
-            Quantity::M | Quantity::Fv => 0,
+            Quantity::M | Quantity::Fv | Quantity::Fc => 0,
             _ => 2,
         }
     }
@@ -133,6 +137,12 @@ pub fn standard_params(robot: &Robot, rotors: bool) -> Vec<StandardParam> {
                 quantity: Quantity::Fv,
             });
         }
+        if !drive.coulomb.is_zero() {
+            out.push(StandardParam {
+                link,
+                quantity: Quantity::Fc,
+            });
+        }
     }
     out
 }
@@ -182,6 +192,7 @@ pub fn scene_values(robot: &Robot, params: &[StandardParam]) -> Vec<Poly> {
                     }
                 }
                 Quantity::Fv => to_poly(&robot.drive(p.link).viscous),
+                Quantity::Fc => to_poly(&robot.drive(p.link).coulomb),
             }
         })
         .collect()

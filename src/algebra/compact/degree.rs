@@ -169,20 +169,24 @@ impl<'a> DegreeBounds<'a> {
                     continue;
                 }
                 match atom::class(id) {
-                    Class::Param | Class::Coord | Class::Pi => term.add(
-                        id,
-                        if e > 0 {
-                            Bound {
-                                pos: e as u64,
-                                neg: 0,
-                            }
-                        } else {
-                            Bound {
-                                pos: 0,
-                                neg: (-e) as u64,
-                            }
-                        },
-                    ),
+                    Class::Param | Class::Coord | Class::Pi | Class::Other
+                        if atom::class(id) != Class::Other || atom::is_sign(id) =>
+                    {
+                        term.add(
+                            id,
+                            if e > 0 {
+                                Bound {
+                                    pos: e as u64,
+                                    neg: 0,
+                                }
+                            } else {
+                                Bound {
+                                    pos: 0,
+                                    neg: (-e) as u64,
+                                }
+                            },
+                        )
+                    }
                     Class::Sin | Class::Cos if e > 0 => {
                         let angle = match atom::class(id) {
                             Class::Sin => id,

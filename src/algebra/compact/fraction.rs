@@ -141,6 +141,9 @@ impl Plan {
                         }
                         Class::Param | Class::Coord if e < 0 => inverted.push(id),
                         Class::Param | Class::Coord | Class::Pi => plain.push(id),
+                        // sgn(x): a free variable like a symbol (see `atom::is_sign`).
+                        Class::Other if atom::is_sign(id) && e < 0 => inverted.push(id),
+                        Class::Other if atom::is_sign(id) => plain.push(id),
                         _ => return Err(NoValue(id)),
                     }
                 }

@@ -172,6 +172,13 @@ fn randomized(
             Ok(d) => {
                 vars.extend(d.vars());
                 degree.push(Some(d.total()));
+                // Every leaf of either side gets a value, also one whose terms cancel in a − b
+                // (the plan evaluates the sides one by one).
+                for side in [a, b] {
+                    if let Ok(ds) = bounds.of(side) {
+                        vars.extend(ds.vars());
+                    }
+                }
             }
             Err(u) => {
                 degree.push(None);
