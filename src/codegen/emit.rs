@@ -18,17 +18,9 @@ fn inputs(what: What) -> Vec<&'static str> {
     }
 }
 
-/// A function's name in the target language (without the C prefix).
+/// A function's name in the target language (without the C prefix): the quantity's name.
 fn fname(what: What) -> &'static str {
-    match what {
-        What::Tau => "tau",
-        What::M => "M",
-        What::H => "h",
-        What::G => "g",
-        What::C => "C",
-        What::Qdd => "qdd",
-        What::Y => "Y",
-    }
+    what.name()
 }
 
 /// The nodes `outputs` need, in increasing (topological) order.
