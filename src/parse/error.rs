@@ -128,10 +128,7 @@ impl ParseError {
 
     /// The error as a compiler prints it: `file:line:column: message`, then the line and the caret.
     pub fn render(&self, source_name: &str) -> String {
-        format!(
-            "{source_name}:{}:{}: {}\n{}",
-            self.0.at.line, self.0.at.column, self.0.kind, self.0.at.excerpt
-        )
+        self.0.at.render(source_name, &self.0.kind)
     }
 }
 

@@ -42,6 +42,15 @@ impl Location {
             excerpt: format!("  {text}\n  {pad}{}", "^".repeat(width)),
         }
     }
+
+    /// An error here as a compiler prints it: `file:line:column: message`, then the line and the
+    /// caret (the one form of every parser's errors).
+    pub(crate) fn render(&self, file_name: &str, message: &dyn std::fmt::Display) -> String {
+        format!(
+            "{file_name}:{}:{}: {message}\n{}",
+            self.line, self.column, self.excerpt
+        )
+    }
 }
 
 /// The largest char boundary at or below `i`.

@@ -211,9 +211,6 @@ impl UrdfError {
     /// The error as a compiler prints it: `file:line:column: message`, then the line and the caret.
     pub fn render(&self, file_name: &str) -> String {
         let (kind, at) = &*self.0;
-        format!(
-            "{file_name}:{}:{}: {kind}\n{}",
-            at.line, at.column, at.excerpt
-        )
+        at.render(file_name, kind)
     }
 }
