@@ -90,6 +90,7 @@ fn robot(spec: &[(bool, u8, u8, u8, u8, bool)], modified: bool) -> Robot {
         links,
         inputs: Robot::default_inputs(n),
         drives: Vec::new(),
+        payload: None,
     }
 }
 

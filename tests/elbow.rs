@@ -36,6 +36,7 @@ fn elbow() -> Robot {
         links: vec![link("m1", "lc1", "l1", "I1"), link("m2", "lc2", "l2", "I2")],
         inputs: Robot::default_inputs(2),
         drives: Vec::new(),
+        payload: None,
     }
 }
 

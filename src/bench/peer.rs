@@ -200,6 +200,7 @@ pub fn robot_from_json(text: &str) -> Result<Robot, BenchError> {
         links,
         inputs: Robot::default_inputs(dof),
         drives: Vec::new(),
+        payload: None,
     };
     robot.validate().map_err(|e| bad(e.to_string()))?;
     Ok(robot)

@@ -54,13 +54,8 @@ pub fn fold(robot: &Robot, values: &BTreeMap<Symbol, Expr>) -> Result<Robot, Cod
     let mut r = robot.clone();
     r.gravity = std::array::from_fn(|k| s(&robot.gravity[k]));
     r.joints = robot.joints.iter().map(|j| j.map_exprs(s)).collect();
-    for l in &mut r.links {
-        l.mass = s(&l.mass);
-        l.com = std::array::from_fn(|k| s(&l.com[k]));
-        if let Some(t) = &mut l.inertia {
-            *t = std::array::from_fn(|a| std::array::from_fn(|b| s(&t[a][b])));
-        }
-    }
+    r.links = robot.links.iter().map(|l| l.map_exprs(s)).collect();
+    r.payload = robot.payload.as_ref().map(|l| l.map_exprs(s));
     for d in &mut r.drives {
         d.rotor = s(&d.rotor);
         d.viscous = s(&d.viscous);

@@ -4,7 +4,7 @@
 //! the rotations `R_0^i` and origins `o_i` in frame 0, the centres of mass `p_ci` in frame 0, the joint
 //! axes in frame 0, and for each link the Jacobians of its centre of mass: `J_v,i` (column `j` is
 //! `∂p_ci/∂q_j`, exact for either DH convention) and `J_ω,i` (column `j` is the axis of joint `j` times
-//! its rate for a revolute `j ≤ i`, zero otherwise).
+//! its rate for a revolute `j ≤ i`, zero otherwise); for a payload, its centre of mass and `J_v,L`.
 
 use super::model::{Convention, JointKind, Placement, Robot};
 use super::placement;
@@ -50,6 +50,9 @@ pub struct Kinematics {
     pub jw: Vec<Vec<Vec3<Poly>>>,
     /// Whether link `i` can rotate: some joint `j ≤ i` is revolute.
     pub rotates: Vec<bool>,
+    /// The payload's centre of mass `p_cL` in frame 0 and its `J_v,L` (columns `j = 1..=n`), when
+    /// the robot has a payload (it moves with link `n`, so its `J_ω` is `J_ω,n`).
+    pub payload: Option<(Vec3<Poly>, Vec<Vec3<Poly>>)>,
 }
 
 fn p(e: &Expr) -> Poly {
@@ -151,19 +154,23 @@ impl Kinematics {
             any |= jf.kind == JointKind::Revolute;
             rotates.push(any);
         }
-        let jv = (0..n)
-            .map(|i| {
-                (1..=n)
-                    .map(|j| {
-                        if j > i + 1 {
-                            return Vec3::zero();
-                        }
-                        let q = Symbol::q(j as u32);
-                        Vec3(std::array::from_fn(|k| poly_diff(&com0[i].0[k], &q)))
-                    })
-                    .collect()
-            })
-            .collect();
+        let jacobian = |p: &Vec3<Poly>, upto: usize| -> Vec<Vec3<Poly>> {
+            (1..=n)
+                .map(|j| {
+                    if j > upto {
+                        return Vec3::zero();
+                    }
+                    let q = Symbol::q(j as u32);
+                    Vec3(std::array::from_fn(|k| poly_diff(&p.0[k], &q)))
+                })
+                .collect()
+        };
+        let jv = (0..n).map(|i| jacobian(&com0[i], i + 1)).collect();
+        let payload = robot.payload.as_ref().map(|l| {
+            let p = origin0[n].add(&rot0[n].mul_vec(&vec_of(&l.com)));
+            let jv = jacobian(&p, n);
+            (p, jv)
+        });
         let jw = (0..n)
             .map(|i| {
                 (0..n)
@@ -186,6 +193,7 @@ impl Kinematics {
             jv,
             jw,
             rotates,
+            payload,
         }
     }
 

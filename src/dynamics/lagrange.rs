@@ -6,6 +6,8 @@
 //!   constant);
 //! - `C(q, q̇)` with `c_kj = Σ_i c_ijk q̇_i`;
 //! - `P = −Σ_i m_i gᵀ p_ci` with `g` the gravity vector in frame 0, and `g_k = ∂P/∂q_k`;
+//! - a payload (a rigid body fixed to link `n`) is one more body in both sums: `m_L J_v,Lᵀ J_v,L +
+//!   J_ω,nᵀ R_n I_L R_nᵀ J_ω,n` in `D` and `−m_L gᵀ p_cL` in `P`;
 //! - the equations `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k = τ_k`;
 //! - a joint's drive (§7.5): the reflected rotor inertia `r² J_m` on the diagonal of `D`, and viscous
 //!   friction `B q̇_k` added to equation `k`.
@@ -93,6 +95,36 @@ impl Lagrange {
             })
             .collect();
         let masses: Vec<Poly> = robot.links.iter().map(|l| to_poly(&l.mass)).collect();
+        // The payload: its mass, J_v,L and, when link n rotates, its tensor with link n's axes.
+        let payload = robot
+            .payload
+            .as_ref()
+            .zip(kin.payload.as_ref())
+            .map(|(l, (_, jv))| {
+                let rot = l.inertia.as_ref().filter(|_| kin.rotates[n - 1]).map(|t| {
+                    let local = Mat3(std::array::from_fn(|r| {
+                        std::array::from_fn(|c| to_poly(&t[r][c]))
+                    }));
+                    let axes = rotational[n - 1]
+                        .as_ref()
+                        .map(|(_, axes)| axes.clone())
+                        .unwrap_or_else(|| {
+                            let r = &kin.rot0[n];
+                            kin.jw[n - 1]
+                                .iter()
+                                .map(|w| {
+                                    if w.is_exact_zero() {
+                                        Vec3::zero()
+                                    } else {
+                                        r.tr_mul_vec(w)
+                                    }
+                                })
+                                .collect()
+                        });
+                    (local, axes)
+                });
+                (to_poly(&l.mass), jv, rot)
+            });
         let mut d = vec![vec![Poly::zero(); n]; n];
         for k in 0..n {
             for j in k..n {
@@ -103,6 +135,18 @@ impl Lagrange {
                         parts.push(masses[i].mul(&jk.dot(jj)));
                     }
                     if let Some((local, axes)) = &rotational[i] {
+                        let (wk, wj) = (&axes[k], &axes[j]);
+                        if !wk.is_exact_zero() && !wj.is_exact_zero() {
+                            parts.push(quad(wk, local, wj));
+                        }
+                    }
+                }
+                if let Some((mass, jv, rot)) = &payload {
+                    let (jk, jj) = (&jv[k], &jv[j]);
+                    if !jk.is_exact_zero() && !jj.is_exact_zero() {
+                        parts.push(mass.mul(&jk.dot(jj)));
+                    }
+                    if let Some((local, axes)) = rot {
                         let (wk, wj) = (&axes[k], &axes[j]);
                         if !wk.is_exact_zero() && !wj.is_exact_zero() {
                             parts.push(quad(wk, local, wj));
@@ -174,9 +218,12 @@ impl Lagrange {
             })
             .collect();
         let gravity: Vec3<Poly> = Vec3(std::array::from_fn(|k| to_poly(&robot.gravity[k])));
-        let p_parts: Vec<Poly> = (0..n)
+        let mut p_parts: Vec<Poly> = (0..n)
             .map(|i| masses[i].mul(&gravity.dot(&kin.com0[i])).neg())
             .collect();
+        if let Some(((mass, _, _), (com0, _))) = payload.as_ref().zip(kin.payload.as_ref()) {
+            p_parts.push(mass.mul(&gravity.dot(com0)).neg());
+        }
         let p = Poly::sum(&p_parts);
         let g: Vec<Poly> = qs.iter().map(|q| poly_diff(&p, q)).collect();
         // K = ½ Σ_a d_aa q̇_a² + Σ_{a<b} d_ab q̇_a q̇_b (D is symmetric).

@@ -152,6 +152,27 @@ pub struct Link {
     pub inertia: Option<[[Expr; 3]; 3]>,
 }
 
+impl Link {
+    /// The link with `f` applied to every expression (mass, centre of mass, inertia).
+    pub fn map_exprs(&self, f: impl Fn(&Expr) -> Expr) -> Link {
+        Link {
+            mass: f(&self.mass),
+            com: std::array::from_fn(|k| f(&self.com[k])),
+            inertia: self
+                .inertia
+                .as_ref()
+                .map(|t| std::array::from_fn(|a| std::array::from_fn(|b| f(&t[a][b])))),
+        }
+    }
+
+    /// Every expression of the body: mass, centre of mass, inertia.
+    pub fn exprs(&self) -> impl Iterator<Item = &Expr> {
+        std::iter::once(&self.mass)
+            .chain(self.com.iter())
+            .chain(self.inertia.iter().flatten().flatten())
+    }
+}
+
 /// A joint's drive: the reflected rotor inertia of its motor and its friction, in the simple
 /// model of Spong, Hutchinson and Vidyasagar, §6.4 and §7.5: a motor of rotor inertia `J_m` behind a
 /// gear of ratio `r` adds `r² J_m q̈_i` to the joint's equation (a constant on the diagonal of D(q);
@@ -212,6 +233,11 @@ pub struct Robot {
     /// The joints' drives (rotor inertia, viscous friction), joint `i` at index `i − 1`; empty when no
     /// joint states one.
     pub drives: Vec<Drive>,
+    /// A payload: a rigid body fixed to the last link, its mass `m_L`, centre of mass `r_{n,cL}` (in
+    /// frame `n`, from `o_n`, as a link's) and inertia `I_L` about its centre of mass in frame `n`.
+    /// Every method treats it as a second body of link `n` (never merged into the link, which would
+    /// divide by `m_n + m_L`); `None`: no payload.
+    pub payload: Option<Link>,
 }
 
 /// A DH field of a joint.
@@ -312,10 +338,12 @@ pub enum ModelError {
         var: String,
     },
     /// A mass that is a negative number.
-    #[error("the mass of link {link} is {value}, negative: a mass is at least 0 (write `mass={positive}`)")]
+    #[error(
+        "the mass of {body} is {value}, negative: a mass is at least 0 (write `mass={positive}`)"
+    )]
     NegativeMass {
-        /// The link, 1-based.
-        link: usize,
+        /// The body: `link 2` or `the payload`.
+        body: String,
         /// The mass as a number.
         value: String,
         /// Its magnitude, the probable intent.
@@ -469,12 +497,12 @@ pub fn check_joint(index: usize, joint: &Joint) -> Result<(), (Field, ModelError
 /// tenth of a second in a debug build, with 64 in 15 s).
 pub const MAX_RATE_NUMERATOR: u32 = 16;
 
-/// Checks link `link`'s mass: a mass that is a number must not be negative (a symbolic mass, `m1`
-/// or `-m1`, may stand for anything and is left alone).
-pub fn check_mass(link: usize, mass: &Expr) -> Result<(), ModelError> {
+/// Checks a body's mass (`body`: `link 2`, `the payload`): a mass that is a number must not be
+/// negative (a symbolic mass, `m1` or `-m1`, may stand for anything and is left alone).
+pub fn check_mass(body: &str, mass: &Expr) -> Result<(), ModelError> {
     match mass.as_rational() {
         Some(r) if r.is_negative() => Err(ModelError::NegativeMass {
-            link,
+            body: body.to_string(),
             value: r.to_string(),
             positive: r.abs().to_string(),
         }),
@@ -522,12 +550,22 @@ impl Robot {
         }
         for (i, l) in self.links.iter().enumerate() {
             constant(format!("the mass of link {}", i + 1), &l.mass)?;
-            check_mass(i + 1, &l.mass)?;
+            check_mass(&format!("link {}", i + 1), &l.mass)?;
             for c in &l.com {
                 constant(format!("the centre of mass of link {}", i + 1), c)?;
             }
             for e in l.inertia.iter().flatten().flatten() {
                 constant(format!("the inertia of link {}", i + 1), e)?;
+            }
+        }
+        if let Some(l) = &self.payload {
+            constant("the mass of the payload".into(), &l.mass)?;
+            check_mass("the payload", &l.mass)?;
+            for c in &l.com {
+                constant("the centre of mass of the payload".into(), c)?;
+            }
+            for e in l.inertia.iter().flatten().flatten() {
+                constant("the inertia of the payload".into(), e)?;
             }
         }
         if !self.drives.is_empty() && self.drives.len() != self.joints.len() {
@@ -571,17 +609,15 @@ impl Robot {
         )
     }
 
-    /// Every constant expression the robot states (gravity, the joints' fields, the links' masses,
-    /// centres of mass and inertias, the drives), for the symbols a scene uses.
+    /// Every constant expression the robot states (gravity, the joints' fields, the links' and the
+    /// payload's masses, centres of mass and inertias, the drives), for the symbols a scene uses.
     pub fn expressions(&self) -> Vec<&Expr> {
         let mut exprs: Vec<&Expr> = self.gravity.iter().collect();
         for j in &self.joints {
             exprs.extend(j.exprs());
         }
-        for l in &self.links {
-            exprs.push(&l.mass);
-            exprs.extend(l.com.iter());
-            exprs.extend(l.inertia.iter().flatten().flatten());
+        for l in self.links.iter().chain(&self.payload) {
+            exprs.extend(l.exprs());
         }
         for d in &self.drives {
             exprs.extend([&d.rotor, &d.viscous, &d.coulomb]);

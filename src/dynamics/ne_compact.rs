@@ -28,6 +28,8 @@
 //! | `jw{i}_{k}`   | `I_i ω_i`                                                                     |
 //! | `n{i}_{k}`    | `n_i`                                                                         |
 //! | `tau{i}`      | `τ_i` (an output, always listed)                                              |
+//! | `acL_{k}`     | `a_c,L − g_n`, the payload's centre of mass (with a payload)                  |
+//! | `jwL_{k}`     | `I_L ω_n`, the payload's angular momentum (with a payload and its inertia)    |
 //!
 //! Gravity enters as an upward acceleration of the base, `a_e,0 = −g_0`, so every acceleration carries
 //! `−g_i` and `f_i = R f_{i+1} + m_i (a_c,i − g_i)` needs no separate `g_i` (Luh, Walker and Paul).
@@ -163,6 +165,7 @@ pub fn tau_into(
     let mut rotates = Vec::with_capacity(n);
     let mut any_revolute = false;
     let (mut omega, mut alpha, mut a_c) = (Vec::new(), Vec::new(), Vec::new());
+    let mut a_payload = None;
     for (idx, jf) in joints.iter().enumerate() {
         let i = idx + 1;
         any_revolute |= jf.kind == JointKind::Revolute;
@@ -210,6 +213,9 @@ pub fn tau_into(
         ));
         if i < n {
             ae_prev = name_vec(arena, aj.add(&u.mul_vec(&r_jo)), &format!("ae{i}"));
+        } else if let Some(l) = &robot.payload {
+            let r_jl = r_jo.add(&vec_of(&l.com));
+            a_payload = Some(name_vec(arena, aj.add(&u.mul_vec(&r_jl)), "acL"));
         }
         w_prev = w.clone();
         wd_prev = wd.clone();
@@ -234,7 +240,18 @@ pub fn tau_into(
             None => (Vec3::zero(), Vec3::zero(), Vec3::zero()),
         };
         let mass = to_poly(&link.mass);
-        let fi = name_vec(arena, f_here.add(&a_c[idx].scale(&mass)), &format!("f{i}"));
+        // The payload on the last link: its force m_L (a_c,L − g_n).
+        let carried = robot
+            .payload
+            .as_ref()
+            .zip(a_payload.as_ref())
+            .filter(|_| idx + 1 == n)
+            .map(|(l, a)| (l, a.scale(&to_poly(&l.mass))));
+        let mut fi = f_here.add(&a_c[idx].scale(&mass));
+        if let Some((_, force)) = &carried {
+            fi = fi.add(force);
+        }
+        let fi = name_vec(arena, fi, &format!("f{i}"));
         let moment = if rotates[idx] {
             let com = vec_of(&link.com);
             let rt = jf.rot.transpose();
@@ -250,6 +267,19 @@ pub fn tau_into(
                 ni = ni
                     .add(&inertia.mul_vec(&alpha[idx]))
                     .add(&omega[idx].cross(&jw));
+            }
+            if let Some((l, force)) = &carried {
+                // f_i holds the payload's force, taken about c_i above: move it to c_L.
+                ni = ni.add(&force.cross(&com.sub(&vec_of(&l.com))));
+                if let Some(t) = &l.inertia {
+                    let inertia = Mat3(std::array::from_fn(|r| {
+                        std::array::from_fn(|c| to_poly(&t[r][c]))
+                    }));
+                    let jw = name_vec(arena, inertia.mul_vec(&omega[idx]), "jwL");
+                    ni = ni
+                        .add(&inertia.mul_vec(&alpha[idx]))
+                        .add(&omega[idx].cross(&jw));
+                }
             }
             let ni = name_vec(arena, ni, &format!("n{i}"));
             n_next = ni.clone();

@@ -3,7 +3,7 @@
 
 use super::kinematics::Kinematics;
 use super::model::{JointKind, Robot};
-use super::newton_euler::{recurse_with, NewtonEuler, Step};
+use super::newton_euler::{recurse_with, Body, NewtonEuler, Part, Step};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::{to_poly, Poly, Symbol};
 
@@ -51,6 +51,16 @@ fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) ->
             let qd = jf.rate.mul(&Poly::symbol(&Symbol::qd(q)));
             let qdd = jf.rate.mul(&Poly::symbol(&Symbol::qdd(q)));
             let rel = jf.origin.sub(&jf.joint_point);
+            // The payload rides on the last link: its data in frame n, moved as the link's is.
+            let payload = robot
+                .payload
+                .as_ref()
+                .filter(|_| i + 1 == robot.dof())
+                .map(|l| {
+                    let com = Vec3(std::array::from_fn(|k| to_poly(&l.com[k])));
+                    let inertia = l.inertia.as_ref().filter(|_| kin.rotates[i]).map(mat);
+                    (to_poly(&l.mass), com, inertia)
+                });
             let (rot_in, axis, s, r_joint_origin, r_origin_com, inertia, gravity) = match frame {
                 Frame::Body => {
                     let rt = jf.rot.transpose();
@@ -78,6 +88,25 @@ fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) ->
                     )
                 }
             };
+            let payload = payload.map(|(mass, com, tensor)| match frame {
+                Frame::Body => Body {
+                    mass,
+                    r_origin_com: com,
+                    inertia: tensor,
+                },
+                Frame::Inertial => {
+                    let here = &kin.rot0[i + 1];
+                    Body {
+                        mass,
+                        r_origin_com: here.mul_vec(&com),
+                        inertia: if rotate_inertia {
+                            tensor.map(|t| here.mul(&t).mul(&here.transpose()))
+                        } else {
+                            tensor
+                        },
+                    }
+                }
+            });
             Step {
                 revolute: jf.kind == JointKind::Revolute,
                 rot_in,
@@ -92,6 +121,7 @@ fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) ->
                 qdd,
                 rate: jf.rate.clone(),
                 drive: robot.drive_term(i + 1),
+                payload,
             }
         })
         .collect()
@@ -111,8 +141,11 @@ pub fn derive(robot: &Robot, kin: &Kinematics, frame: Frame) -> NewtonEuler<Poly
             let steps = build(robot, kin, frame, false);
             recurse_with(
                 &steps,
-                Some(&|i, alpha, omega| {
-                    let local = steps[i].inertia.as_ref()?;
+                Some(&|i, part, alpha, omega| {
+                    let local = match part {
+                        Part::Link => steps[i].inertia.as_ref()?,
+                        Part::Payload => steps[i].payload.as_ref()?.inertia.as_ref()?,
+                    };
                     let r = &kin.rot0[i + 1];
                     let (alpha_i, omega_i) = (r.tr_mul_vec(alpha), r.tr_mul_vec(omega));
                     Some((

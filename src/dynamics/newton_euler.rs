@@ -17,6 +17,10 @@
 //! - `n_i = R n_{i+1} − f_i × r_{J,ci} + (R f_{i+1}) × (r_{i,ci} − s_{i+1}) + I_i α_i + ω_i × (I_i ω_i)`;
 //! - the actuated force or torque: `τ_i = f_iᵀ b_i` (prismatic) or `n_iᵀ b_i` (revolute).
 //!
+//! A payload (a second rigid body `L` fixed to the last link, [`Body`]) adds `m_L (a_c,L − g_n)` to
+//! `f_n` and its moment about the joint point, `−m_L (a_c,L − g_n) × r_{J,cL} + I_L α_n + ω_n × (I_L ω_n)`,
+//! to `n_n`, with `a_c,L` the acceleration of its centre of mass as for `a_c,n`.
+//!
 //! Moments are computed only from the first revolute joint on: before it, no joint needs them.
 
 use super::scalar::Scalar;
@@ -52,6 +56,28 @@ pub struct Step<S> {
     pub rate: S,
     /// The drive's term `r² J_m q̈_i + B q̇_i` added to `τ_i` (Spong §7.5), `None` without a drive.
     pub drive: Option<S>,
+    /// A second rigid body fixed to link `i` (the payload of the last link), `None`: none.
+    pub payload: Option<Body<S>>,
+}
+
+/// A rigid body fixed to a link besides the link itself, in the link's working frame.
+#[derive(Clone, Debug)]
+pub struct Body<S> {
+    /// `m_L`.
+    pub mass: S,
+    /// `r_{i,cL}`: from `o_i` to its centre of mass.
+    pub r_origin_com: Vec3<S>,
+    /// `I_L` about its centre of mass, or `None` when it is not needed or not given.
+    pub inertia: Option<Mat3<S>>,
+}
+
+/// Which body of a link an Euler term is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    /// The link itself.
+    Link,
+    /// The payload fixed to it ([`Step::payload`]).
+    Payload,
 }
 
 /// Every intermediate quantity of one Newton–Euler run, per link (index `i − 1`).
@@ -67,6 +93,8 @@ pub struct NewtonEuler<S> {
     pub a_e: Vec<Vec3<S>>,
     /// `g_i`.
     pub g: Vec<Vec3<S>>,
+    /// `a_c,L`, the acceleration of the payload's centre of mass, when there is a payload.
+    pub a_payload: Option<Vec3<S>>,
     /// `f_i`.
     pub f: Vec<Vec3<S>>,
     /// `n_i`, `None` where no revolute joint precedes and moments were not needed.
@@ -80,10 +108,13 @@ pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
     run(steps, &book_euler(steps), Moment::Book)
 }
 
-/// The Euler term with [`Step::inertia`].
+/// The Euler term with [`Step::inertia`] (or the payload's [`Body::inertia`]).
 fn book_euler<'a, S: Scalar>(steps: &'a [Step<S>]) -> Box<EulerTerm<'a, S>> {
-    Box::new(move |i, alpha, omega| {
-        let inertia = steps[i].inertia.as_ref()?;
+    Box::new(move |i, part, alpha, omega| {
+        let inertia = match part {
+            Part::Link => steps[i].inertia.as_ref()?,
+            Part::Payload => steps[i].payload.as_ref()?.inertia.as_ref()?,
+        };
         Some((inertia.mul_vec(alpha), omega.cross(&inertia.mul_vec(omega))))
     })
 }
@@ -99,9 +130,10 @@ enum Moment {
     Split,
 }
 
-/// The two parts `(I_i α_i, ω_i × (I_i ω_i))` of the Euler term of link `i` (0-based), from `i`, `α_i`
-/// and `ω_i`; `None` when the link has no inertia term.
-pub type EulerTerm<'a, S> = dyn Fn(usize, &Vec3<S>, &Vec3<S>) -> Option<(Vec3<S>, Vec3<S>)> + 'a;
+/// The two parts `(I_i α_i, ω_i × (I_i ω_i))` of the Euler term of link `i` (0-based) or of its
+/// payload, from `i`, the part, `α_i` and `ω_i`; `None` when the body has no inertia term.
+pub type EulerTerm<'a, S> =
+    dyn Fn(usize, Part, &Vec3<S>, &Vec3<S>) -> Option<(Vec3<S>, Vec3<S>)> + 'a;
 
 /// Runs both recursions for exact scalars, with the Euler term of each link given by `euler` (`None`:
 /// with [`Step::inertia`]), so a caller can evaluate it in whatever frame is cheapest. The moment is
@@ -129,6 +161,7 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
     );
     let (mut w_prev, mut al_prev, mut ae_prev) =
         (Vec3::<S>::zero(), Vec3::<S>::zero(), Vec3::<S>::zero());
+    let mut a_payload = None;
     let two = S::from_rational(&crate::algebra::Rational::int(2));
     for (idx, st) in steps.iter().enumerate() {
         let i = idx + 1;
@@ -162,6 +195,10 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
         };
         let r_jc = st.r_joint_origin.add(&st.r_origin_com);
         a_c.push(S::label(accel(&r_jc), &|| format!("ac{i}")));
+        if let Some(b) = &st.payload {
+            let r_jl = st.r_joint_origin.add(&b.r_origin_com);
+            a_payload = Some(S::label(accel(&r_jl), &|| "acL".to_string()));
+        }
         let ae = S::label(accel(&st.r_joint_origin), &|| format!("ae{i}"));
         a_e.push(ae.clone());
         g.push(st.gravity.clone());
@@ -191,7 +228,16 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
             None => (Vec3::zero(), Vec3::zero(), Vec3::zero()),
         };
         let own = a_c[i].sub(&g[i]).scale(&st.mass);
-        let fi = S::label(f_here.add(&own), &|| format!("f{}", i + 1));
+        // The payload's force m_L (a_c,L − g_i) and its lever from the joint point.
+        let carried = st.payload.as_ref().zip(a_payload.as_ref()).map(|(b, a)| {
+            let force = a.sub(&g[i]).scale(&b.mass);
+            (force, st.r_joint_origin.add(&b.r_origin_com), b)
+        });
+        let fi = match &carried {
+            Some((force, ..)) => f_here.add(&own).add(force),
+            None => f_here.add(&own),
+        };
+        let fi = S::label(fi, &|| format!("f{}", i + 1));
         if first_revolute.is_some_and(|r| i >= r) {
             let r_jc = st.r_joint_origin.add(&st.r_origin_com);
             let mut ni = match moment {
@@ -202,8 +248,18 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
                     .sub(&f_here.cross(&st.r_joint_origin.add(&s_next)))
                     .sub(&own.cross(&r_jc)),
             };
-            if let Some((i_alpha, gyro)) = euler(i, &alpha[i], &omega[i]) {
+            if let Some((i_alpha, gyro)) = euler(i, Part::Link, &alpha[i], &omega[i]) {
                 ni = ni.add(&i_alpha).add(&gyro);
+            }
+            if let Some((force, r_jl, body)) = &carried {
+                // Book: f_i already holds the payload's force, taken about c_i; move it to c_L.
+                ni = match moment {
+                    Moment::Book => ni.add(&force.cross(&st.r_origin_com.sub(&body.r_origin_com))),
+                    Moment::Split => ni.sub(&force.cross(r_jl)),
+                };
+                if let Some((i_alpha, gyro)) = euler(i, Part::Payload, &alpha[i], &omega[i]) {
+                    ni = ni.add(&i_alpha).add(&gyro);
+                }
             }
             moments[i] = Some(S::label(ni, &|| format!("n{}", i + 1)));
         }
@@ -226,6 +282,7 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
         a_c,
         a_e,
         g,
+        a_payload,
         f,
         n: moments,
         tau,

@@ -6,8 +6,10 @@
 //! as an upward acceleration of the base. A standard-DH row becomes a joint frame followed by the fixed
 //! `Trans(x,a) Rot(x,α)`; a modified-DH row is a fixed `Rot(x,α) Trans(x,a)` followed by the joint; a
 //! placed joint (URDF) is a fixed `Trans(xyz) Rot(rpy)` followed by the joint about its own axis
-//! (nalgebra's axis-angle rotation, not the symbolic Rodrigues matrix). The tests hold the symbolic
-//! results to it.
+//! (nalgebra's axis-angle rotation, not the symbolic Rodrigues matrix). A payload is merged into the
+//! last link here, as one rigid body (total mass, the mass-weighted centre of mass, and the
+//! parallel-axis theorem for the inertia), where the symbolic methods keep it a second body. The tests
+//! hold the symbolic results to it.
 
 use super::model::{Convention, JointKind, Robot};
 use super::placement::rpy_matrix_f64;
@@ -42,6 +44,25 @@ fn rot_x(a: f64) -> Matrix3<f64> {
 fn rot_z(a: f64) -> Matrix3<f64> {
     let (s, c) = a.sin_cos();
     Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+/// One rigid body of two, each `(mass, centre of mass, inertia about it)` in the same frame: the masses
+/// add, the centre of mass is their weighted mean, and each inertia moves to it by the parallel-axis
+/// theorem, `I + m (|d|² 1 − d dᵀ)`.
+fn merge(
+    a: (f64, Vector3<f64>, Matrix3<f64>),
+    b: (f64, Vector3<f64>, Matrix3<f64>),
+) -> (f64, Vector3<f64>, Matrix3<f64>) {
+    let m = a.0 + b.0;
+    if m == 0.0 {
+        return (0.0, a.1, a.2 + b.2);
+    }
+    let c = (a.1 * a.0 + b.1 * b.0) / m;
+    let shift = |(mi, ci, ii): (f64, Vector3<f64>, Matrix3<f64>)| {
+        let d = ci - c;
+        ii + (Matrix3::identity() * d.dot(&d) - d * d.transpose()) * mi
+    };
+    (m, c, shift(a) + shift(b))
 }
 
 /// `τ = ID(q, q̇, q̈)` for the robot with the parameters valued by `params`.
@@ -95,17 +116,22 @@ pub fn inverse_dynamics(
         let rate = eval_f64(&diff(var, &qi), &vals)?;
         let (mut joint_r, mut joint_p, mut axis) =
             (rot_z(theta), Vector3::new(0.0, 0.0, d), Vector3::z());
-        let link = &robot.links[i];
-        let com = vec3(&link.com)?;
-        let inertia = match &link.inertia {
-            Some(t) => Matrix3::from_fn(|r, c| ev(&t[r][c]).unwrap_or(f64::NAN)),
-            None => Matrix3::zeros(),
-        };
-        if inertia.iter().any(|x| x.is_nan()) {
-            // Surface the missing symbols with the proper error.
-            for e in link.inertia.iter().flatten().flatten() {
-                ev(e)?;
+        let body = |link: &crate::dynamics::Link| -> Result<_, EvalError> {
+            let inertia = match &link.inertia {
+                Some(t) => Matrix3::from_fn(|r, c| ev(&t[r][c]).unwrap_or(f64::NAN)),
+                None => Matrix3::zeros(),
+            };
+            if inertia.iter().any(|x| x.is_nan()) {
+                // Surface the missing symbols with the proper error.
+                for e in link.inertia.iter().flatten().flatten() {
+                    ev(e)?;
+                }
             }
+            Ok((ev(&link.mass)?, vec3(&link.com)?, inertia))
+        };
+        let (mut mass, mut com, mut inertia) = body(&robot.links[i])?;
+        if let Some(l) = robot.payload.as_ref().filter(|_| i + 1 == n) {
+            (mass, com, inertia) = merge((mass, com, inertia), body(l)?);
         }
         let (pre_r, pre_p, after_r, after_p) = match (&j.placement, robot.convention) {
             (Some(pl), _) => {
@@ -146,7 +172,7 @@ pub fn inverse_dynamics(
             p,
             pc,
             inertia: inertia_j,
-            mass: ev(&link.mass)?,
+            mass,
             rate,
         });
         post_r = after_r;

@@ -278,6 +278,13 @@ pub fn from_dh(robot: &Robot) -> Robot {
                 a_prev = std::mem::replace(&mut j.a, zero());
                 alpha_prev = std::mem::replace(&mut j.alpha, zero());
             }
+            // The payload is given in DH frame n, as link n's data is: move it the same way.
+            if let Some(l) = &mut out.payload {
+                let r = rpy_matrix(&[alpha_prev.clone(), zero(), zero()]);
+                let rc = mat_vec(&r, &l.com);
+                l.com = [&a_prev + &rc[0], rc[1].clone(), rc[2].clone()];
+                l.inertia = l.inertia.as_ref().map(|t| rotate_tensor(&r, t));
+            }
         }
     }
     out

@@ -44,7 +44,7 @@ impl Robot {
             }
         }
         let zero = |e: &Expr| e.is_zero();
-        if self.links.iter().all(|l| {
+        if self.links.iter().chain(&self.payload).all(|l| {
             zero(&l.mass)
                 && l.inertia
                     .as_ref()

@@ -181,12 +181,8 @@ fn used_symbols(robot: &Robot) -> Vec<Symbol> {
     for j in &robot.joints {
         exprs.extend([&j.a, &j.alpha, &j.d, &j.theta]);
     }
-    for l in &robot.links {
-        exprs.push(&l.mass);
-        exprs.extend(l.com.iter());
-        if let Some(t) = &l.inertia {
-            exprs.extend(t.iter().flatten());
-        }
+    for l in robot.links.iter().chain(&robot.payload) {
+        exprs.extend(l.exprs());
     }
     exprs.into_iter().flat_map(|e| e.symbols()).collect()
 }

@@ -127,6 +127,11 @@ pub fn text(
         if reg.options.rotors { ", rotor inertia" } else { "" },
         names(reg, 0..np).join(" ")
     ));
+    if reg.model.payload.is_some() {
+        s.push_str(&format!(
+            "the payload is part of link {n}: its parameters about o_{n} add to link {n}'s (the fit identifies the two together)\n"
+        ));
+    }
     let zero: Vec<usize> = (0..np).filter(|&k| reg.zero_column(k)).collect();
     s.push_str(&format!(
         "structurally zero columns ({}): {}\n",

@@ -147,31 +147,52 @@ pub fn standard_params(robot: &Robot, rotors: bool) -> Vec<StandardParam> {
     out
 }
 
+/// One body's inertia about its frame's origin `J_o = I_c + m (rᵀr E − r rᵀ)`, first moment `m r` and
+/// mass.
+fn origin_parameters(link: &crate::dynamics::Link) -> ([[Poly; 3]; 3], [Poly; 3], Poly) {
+    let m = to_poly(&link.mass);
+    let r: Vec<Poly> = link.com.iter().map(to_poly).collect();
+    let ic = |a: usize, b: usize| {
+        link.inertia
+            .as_ref()
+            .map_or_else(Poly::zero, |t| to_poly(&t[a][b]))
+    };
+    let rr = r[0].mul(&r[0]).add(&r[1].mul(&r[1])).add(&r[2].mul(&r[2]));
+    let jo = std::array::from_fn(|a| {
+        std::array::from_fn(|b| {
+            let shift = if a == b {
+                rr.sub(&r[a].mul(&r[b]))
+            } else {
+                r[a].mul(&r[b]).neg()
+            };
+            ic(a, b).add(&m.mul(&shift))
+        })
+    });
+    (jo, std::array::from_fn(|k| m.mul(&r[k])), m)
+}
+
 /// The values of the standard parameters of a scene, each an exact polynomial in its symbols:
 /// `J_o = I_c + m (rᵀr E − r rᵀ)`, `MS = m r`, `M = m` (the parallel-axis theorem; a point mass has
 /// `I_c = 0`), the scene's rotor inertia `r² J_m` (the symbol `Iaj` where it states none) and viscous
-/// friction.
+/// friction; a payload's parameters are added to the last link's.
 pub fn scene_values(robot: &Robot, params: &[StandardParam]) -> Vec<Poly> {
     params
         .iter()
         .map(|p| {
-            let link = &robot.links[p.link - 1];
-            let m = to_poly(&link.mass);
-            let r: Vec<Poly> = link.com.iter().map(to_poly).collect();
-            let ic = |a: usize, b: usize| {
-                link.inertia
-                    .as_ref()
-                    .map_or_else(Poly::zero, |t| to_poly(&t[a][b]))
-            };
-            let rr = r[0].mul(&r[0]).add(&r[1].mul(&r[1])).add(&r[2].mul(&r[2]));
-            let jo = |a: usize, b: usize| {
-                let shift = if a == b {
-                    rr.sub(&r[a].mul(&r[b]))
-                } else {
-                    r[a].mul(&r[b]).neg()
-                };
-                ic(a, b).add(&m.mul(&shift))
-            };
+            // The payload rides on the last link: about the origin its parameters simply add.
+            let payload = robot.payload.as_ref().filter(|_| p.link == robot.dof());
+            let (jo_sum, r, m) = std::iter::once(&robot.links[p.link - 1])
+                .chain(payload)
+                .map(origin_parameters)
+                .reduce(|(ja, ra, ma), (jb, rb, mb)| {
+                    (
+                        std::array::from_fn(|x| std::array::from_fn(|y| ja[x][y].add(&jb[x][y]))),
+                        std::array::from_fn(|k| ra[k].add(&rb[k])),
+                        ma.add(&mb),
+                    )
+                })
+                .expect("the link itself");
+            let jo = |a: usize, b: usize| jo_sum[a][b].clone();
             match p.quantity {
                 Quantity::Xx => jo(0, 0),
                 Quantity::Xy => jo(0, 1),
@@ -179,9 +200,9 @@ pub fn scene_values(robot: &Robot, params: &[StandardParam]) -> Vec<Poly> {
                 Quantity::Yy => jo(1, 1),
                 Quantity::Yz => jo(1, 2),
                 Quantity::Zz => jo(2, 2),
-                Quantity::Mx => m.mul(&r[0]),
-                Quantity::My => m.mul(&r[1]),
-                Quantity::Mz => m.mul(&r[2]),
+                Quantity::Mx => r[0].clone(),
+                Quantity::My => r[1].clone(),
+                Quantity::Mz => r[2].clone(),
                 Quantity::M => m,
                 Quantity::Ia => {
                     let rotor = robot.drive(p.link).rotor;

@@ -20,7 +20,7 @@ use super::trace::{Graph, Op, TraceError, Traced, Tracer, Val};
 use super::NumericError;
 use crate::algebra::{atom, to_poly, Poly, Symbol};
 use crate::dynamics::ne_symbolic::{self, Frame};
-use crate::dynamics::newton_euler::{recurse, Step};
+use crate::dynamics::newton_euler::{recurse, Body, Step};
 use crate::dynamics::vec3::{Mat3, Vec3};
 use crate::dynamics::Derivation;
 use std::collections::{BTreeSet, HashMap};
@@ -154,6 +154,11 @@ fn bound_values(
         polys.extend([&st.mass, &st.qd, &st.qdd, &st.rate]);
         polys.extend(st.drive.iter());
         polys.extend(st.inertia.iter().flat_map(|m| m.0.iter().flatten()));
+        if let Some(b) = &st.payload {
+            polys.push(&b.mass);
+            polys.extend(b.r_origin_com.0.iter());
+            polys.extend(b.inertia.iter().flat_map(|m| m.0.iter().flatten()));
+        }
     }
     let unbound: BTreeSet<Symbol> = parameters(polys)
         .into_iter()
@@ -223,6 +228,17 @@ fn trace_steps(
                 qdd: t.poly(&st.qdd)?,
                 rate: t.poly(&st.rate)?,
                 drive: st.drive.as_ref().map(|p| t.poly(p)).transpose()?,
+                payload: st
+                    .payload
+                    .as_ref()
+                    .map(|b| -> Result<Body<Traced>, TraceError> {
+                        Ok(Body {
+                            mass: t.poly(&b.mass)?,
+                            r_origin_com: trace_vec(t, &b.r_origin_com)?,
+                            inertia: b.inertia.as_ref().map(|m| trace_mat(t, m)).transpose()?,
+                        })
+                    })
+                    .transpose()?,
                 rot_in,
             })
         })

@@ -160,6 +160,16 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, brief: bool) -> String
         ));
     }
     out.push_str("\\bottomrule\n\\end{tabular}\n\\end{center}\n");
+    if let Some(l) = &robot.payload {
+        out.push_str(&format!(
+            "A payload is fixed to link {n}: mass $m_L = {}$, centre of mass $r_{{{n},c_L}} = {}$ in \
+             frame {n}. Every method treats it as a second body of link {n}: it adds \
+             $m_L J_{{v_L}}^T J_{{v_L}} + J_{{\\omega_{n}}}^T R_{n} I_L R_{n}^T J_{{\\omega_{n}}}$ to $D(q)$ \
+             and $-m_L g^T p_{{c_L}}$ to $P$, and its force and moment to $f_{n}$ and $n_{n}$.\n\n",
+            math(&l.mass),
+            column(&l.com)
+        ));
+    }
     if robot.has_drives() {
         out.push_str(
             "The joints are driven through gears (the simple model of Spong et al., \\S 6.4 and \\S 7.5): \
@@ -266,6 +276,19 @@ fn inertia(der: &Derivation, lay: &mut Layout, n: usize) -> String {
                 i + 1,
                 i + 1
             )),
+        }
+    }
+    if let Some(l) = robot.payload.as_ref().filter(|_| der.rotates()[n - 1]) {
+        match &l.inertia {
+            Some(t) => {
+                let rows: Vec<Vec<Expr>> = t.iter().map(|r| r.to_vec()).collect();
+                out.push_str(&format!(
+                    "The inertia tensor of the payload about its centre of mass, in frame {n}:\n"
+                ));
+                let entry = |r: usize, c: usize| format!("(I_L)_{{{r}{c}}}");
+                out.push_str(&lay.matrix("I_L", &rows, &entry, true, Grouping::Leading));
+            }
+            None => out.push_str("The payload is a point mass ($I_L = 0$).\n\n"),
         }
     }
     out

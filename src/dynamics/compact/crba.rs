@@ -3,7 +3,8 @@
 //!
 //! The composite body `C_i` is links `i..n` held rigid. In frame `i`, about the origin `o_i`, it has
 //! mass `M_i`, first moment `h_i = Σ m (p − o_i)` and rotational inertia `J_i`, built from the tip:
-//! - link `i` alone: `m_i`, `m_i r_i`, `I_i + m_i (|r_i|² 1 − r_i r_iᵀ)` (`r_i` its centre of mass);
+//! - link `i` alone: `m_i`, `m_i r_i`, `I_i + m_i (|r_i|² 1 − r_i r_iᵀ)` (`r_i` its centre of mass),
+//!   and the same of the payload added to link `n`'s;
 //! - plus `C_{i+1}` seen from frame `i` (`R = R_i^{i+1}`, `p = o_{i+1}` in frame `i`, `h' = R h_{i+1}`):
 //!   `M_{i+1}`, `h' + M_{i+1} p`, `R J_{i+1} Rᵀ − S(h') S(p) − S(p) S(h') − M_{i+1} S(p)²`.
 //!
@@ -46,9 +47,23 @@ fn mat_scale(a: &Mat3<Poly>, s: &Poly) -> Mat3<Poly> {
     }))
 }
 
-/// The link's own mass, first moment and inertia about its frame's origin (the parallel-axis theorem).
+/// The link's own mass, first moment and inertia about its frame's origin (the parallel-axis theorem),
+/// with the payload's added for the last link (about the origin they simply add: no division).
 fn own(robot: &Robot, i: usize) -> Composite {
-    let link = &robot.links[i];
+    let mut c = body(&robot.links[i]);
+    if let Some(l) = robot.payload.as_ref().filter(|_| i + 1 == robot.dof()) {
+        let p = body(l);
+        c = Composite {
+            mass: c.mass.add(&p.mass),
+            first: c.first.add(&p.first),
+            inertia: mat_add(&c.inertia, &p.inertia),
+        };
+    }
+    c
+}
+
+/// One body's mass, first moment and inertia about its frame's origin.
+fn body(link: &crate::dynamics::Link) -> Composite {
     let m = to_poly(&link.mass);
     let r = Vec3(std::array::from_fn(|k| to_poly(&link.com[k])));
     let s = skew(&r);

@@ -11,7 +11,7 @@ use crate::algebra::compact::Compact;
 use crate::algebra::{to_poly, Expr, Poly, Symbol};
 use crate::dynamics::kinematics::JointFrame;
 use crate::dynamics::model::{JointKind, Robot};
-use crate::dynamics::newton_euler::{recurse_with, Step};
+use crate::dynamics::newton_euler::{recurse_with, Body, Part, Step};
 use crate::dynamics::scalar::Scalar;
 use crate::dynamics::vec3::{Mat3, Vec3};
 use std::cell::RefCell;
@@ -78,6 +78,15 @@ pub fn tau(robot: &Robot, joints: &[JointFrame], arena: Compact) -> (Compact, Ve
                 qdd: Named::new(&a, jf.rate.mul(&Poly::symbol(&Symbol::qdd(q)))),
                 rate: Named::new(&a, jf.rate.clone()),
                 drive: robot.drive_term(i + 1).map(|p| Named::new(&a, p)),
+                payload: robot.payload.as_ref().filter(|_| i + 1 == n).map(|l| Body {
+                    mass: Named::new(&a, to_poly(&l.mass)),
+                    r_origin_com: wrap_vec(&a, &here.mul_vec(&vec_of(&l.com))),
+                    inertia: l.inertia.as_ref().filter(|_| rotates[i]).map(|t| {
+                        Mat3(std::array::from_fn(|r| {
+                            std::array::from_fn(|c| Named::new(&a, to_poly(&t[r][c])))
+                        }))
+                    }),
+                }),
             }
         })
         .collect();
@@ -85,11 +94,17 @@ pub fn tau(robot: &Robot, joints: &[JointFrame], arena: Compact) -> (Compact, Ve
     let tau: Vec<Poly> = {
         let ne = recurse_with(
             &steps,
-            Some(&|i, alpha: &Vec3<Named>, omega: &Vec3<Named>| {
-                let local = steps[i].inertia.as_ref()?;
+            Some(&|i, part, alpha: &Vec3<Named>, omega: &Vec3<Named>| {
+                let (local, name) = match part {
+                    Part::Link => (steps[i].inertia.as_ref()?, format!("jw{}", i + 1)),
+                    Part::Payload => (
+                        steps[i].payload.as_ref()?.inertia.as_ref()?,
+                        "jwL".to_string(),
+                    ),
+                };
                 let r = &rots[i + 1];
                 let (alpha_i, omega_i) = (r.tr_mul_vec(alpha), r.tr_mul_vec(omega));
-                let jw = Named::label(local.mul_vec(&omega_i), &|| format!("jw{}", i + 1));
+                let jw = Named::label(local.mul_vec(&omega_i), &|| name.clone());
                 Some((
                     r.mul_vec(&local.mul_vec(&alpha_i)),
                     r.mul_vec(&omega_i.cross(&jw)),

@@ -1,5 +1,6 @@
 //! The potential energy `P` and the gravity vector `g(q) = ∂P/∂q` on the compact form (Spong et al.,
-//! §7.3: `P = −Σ_i m_i gᵀ p_ci`, `g` the gravitational acceleration in frame 0).
+//! §7.3: `P = −Σ_i m_i gᵀ p_ci`, `g` the gravitational acceleration in frame 0; a payload is one more
+//! term, `−m_L gᵀ p_cL`, at the last link).
 //!
 //! Gravity is carried into each link frame, `g_i = R_{i−1}^iᵀ g_{i−1}`, and the height of each origin
 //! accumulated as a scalar, `e_i = gᵀ o_i = e_{i−1} + g_{i−1} · p_i` (`p_i = o_i` in frame `i − 1`),
@@ -29,6 +30,10 @@ pub fn potential_and_gravity(
         let link = &robot.links[idx];
         let r = Vec3(std::array::from_fn(|k| to_poly(&link.com[k])));
         parts.push(to_poly(&link.mass).mul(&e.add(&g.dot(&r))).neg());
+        if let Some(l) = robot.payload.as_ref().filter(|_| i == robot.dof()) {
+            let r = Vec3(std::array::from_fn(|k| to_poly(&l.com[k])));
+            parts.push(to_poly(&l.mass).mul(&e.add(&g.dot(&r))).neg());
+        }
         g_prev = g;
         e_prev = e;
     }

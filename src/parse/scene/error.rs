@@ -256,7 +256,9 @@ impl SceneExpected {
     /// The words for this expectation.
     pub fn words(self) -> &'static str {
         match self {
-            SceneExpected::Statement => "a statement: robot, gravity, dh, joint, link or inputs",
+            SceneExpected::Statement => {
+                "a statement: robot, gravity, dh, joint, link, payload or inputs"
+            }
             SceneExpected::QuotedName => "a name in double quotes, such as `robot \"PUMA 560\"`",
             SceneExpected::Vector => "a vector such as `[0, 0, -g]`",
             SceneExpected::Convention => "the DH convention, `standard` or `modified`",
@@ -392,7 +394,7 @@ fn context(line: &str) -> Context {
         .unwrap_or("");
     match first {
         "joint" => Context::Joint,
-        "link" => Context::Link,
+        "link" | "payload" => Context::Link,
         _ => Context::Other,
     }
 }
@@ -478,12 +480,14 @@ pub(crate) fn from_pest(
             | Rule::dh
             | Rule::joint
             | Rule::link
+            | Rule::payload
             | Rule::inputs
             | Rule::robot_keyword
             | Rule::gravity_keyword
             | Rule::dh_keyword
             | Rule::joint_keyword
             | Rule::link_keyword
+            | Rule::payload_keyword
             | Rule::inputs_keyword => SceneExpected::Statement,
             Rule::quoted => {
                 if rest.starts_with('"') {

@@ -273,6 +273,8 @@ pub(super) struct Builder {
     dh_row: Option<usize>,
     joints: Vec<JointEntry>,
     links: Vec<LinkEntry>,
+    /// The payload and the line that states it.
+    payload: Option<(Link, usize)>,
     inputs: Option<InputsEntry>,
 }
 
@@ -401,6 +403,11 @@ impl Builder {
             }
             Rule::joint => self.joint(at, keyword_span, parts)?,
             Rule::link => self.link(at, keyword_span, parts)?,
+            Rule::payload => {
+                once(at, &self.payload, "payload", keyword_span.clone())?;
+                let (link, _) = body(at, parts, "the payload", keyword_span)?;
+                self.payload = Some((link, at.line));
+            }
             Rule::inputs => self.inputs(at, keyword_span, parts)?,
             _ => {}
         }
@@ -714,83 +721,10 @@ impl Builder {
                 span(&number),
             ));
         }
-        let mut mass = None;
-        let mut com = None;
-        let mut inertia: Option<(Inertia, Range<usize>)> = None;
-        let what = |q: &str| format!("the {q} of link {n}");
-        for f in fields(at, parts)? {
-            match f.key.as_str() {
-                "mass" => {
-                    let Value::Expr(pair) = &f.value else {
-                        return Err(at.error(
-                            SceneErrorKind::WrongValue {
-                                key: "mass",
-                                takes: "an expression, such as `m1` or `2.5`",
-                            },
-                            f.value_span,
-                        ));
-                    };
-                    let m = at.constant(pair, &what("mass"))?;
-                    check_mass(n, &m)
-                        .map_err(|e| at.error(SceneErrorKind::Model(e), f.value_span.clone()))?;
-                    mass = Some(m);
-                }
-                "com" => {
-                    let Value::Vector(v) = &f.value else {
-                        return Err(at.error(
-                            SceneErrorKind::WrongValue {
-                                key: "com",
-                                takes: "a vector [x, y, z] in the link's frame",
-                            },
-                            f.value_span,
-                        ));
-                    };
-                    let what = what("centre of mass");
-                    com = Some(vector3(
-                        at,
-                        v,
-                        f.value_span.clone(),
-                        "the centre of mass",
-                        &what,
-                    )?);
-                }
-                "inertia" => {
-                    let value = inertia_value(at, &f, &what("inertia"))?;
-                    inertia = Some((value, f.span.clone()));
-                }
-                _ => {
-                    return Err(at.error(
-                        SceneErrorKind::UnknownKey {
-                            statement: "link",
-                            key: f.written.to_string(),
-                            known: LINK_KEYS,
-                        },
-                        f.key_span,
-                    ))
-                }
-            }
-        }
-        let Some(mass) = mass else {
-            return Err(at.error(
-                SceneErrorKind::MissingKey {
-                    what: format!("link {n}"),
-                    key: "mass",
-                    hint: "a link needs a mass, such as `mass=m1`",
-                },
-                head,
-            ));
-        };
-        let (tensor, inertia_span) = match inertia {
-            Some((value, s)) => (Some(value.tensor(&mass)), Some(at.file(s))),
-            None => (None, None),
-        };
+        let (link, inertia_span) = body(at, parts, &format!("link {n}"), head.clone())?;
         self.links.push(LinkEntry {
             index: n,
-            link: Link {
-                mass,
-                com: com.unwrap_or_else(|| [Expr::zero(), Expr::zero(), Expr::zero()]),
-                inertia: tensor,
-            },
+            link,
             line: at.line,
             head: at.file(head),
             inertia: inertia_span,
@@ -898,6 +832,7 @@ impl Builder {
             links: robot_links,
             inputs,
             drives,
+            payload: self.payload.map(|(l, _)| l),
         };
         // Every rule of `validate` was checked above with a place to point at; a failure here would
         // be a rule added to the model and not yet to the scene.
@@ -941,6 +876,106 @@ impl Builder {
         warnings.sort_by_key(SceneWarning::line);
         Ok(Scene { robot, warnings })
     }
+}
+
+/// The fields of a body (`link N` or `payload`): `mass=` (required), `com=` (the origin when not
+/// given), `inertia=` (a point mass when not given); `who` names it in messages (`link 2`, `the
+/// payload`), `head` is where a missing mass is reported. Returns the body and the span of its inertia.
+fn body<'i>(
+    at: &At<'_>,
+    parts: impl Iterator<Item = Pair<'i, Rule>>,
+    who: &str,
+    head: Range<usize>,
+) -> Result<(Link, Option<Range<usize>>), SceneError> {
+    let statement = if who == "the payload" {
+        "payload"
+    } else {
+        "link"
+    };
+    let mut mass = None;
+    let mut com = None;
+    let mut inertia: Option<(Inertia, Range<usize>)> = None;
+    let what = |q: &str| format!("the {q} of {who}");
+    for f in fields(at, parts)? {
+        match f.key.as_str() {
+            "mass" => {
+                let Value::Expr(pair) = &f.value else {
+                    return Err(at.error(
+                        SceneErrorKind::WrongValue {
+                            key: "mass",
+                            takes: "an expression, such as `m1` or `2.5`",
+                        },
+                        f.value_span,
+                    ));
+                };
+                let m = at.constant(pair, &what("mass"))?;
+                check_mass(who, &m)
+                    .map_err(|e| at.error(SceneErrorKind::Model(e), f.value_span.clone()))?;
+                mass = Some(m);
+            }
+            "com" => {
+                let Value::Vector(v) = &f.value else {
+                    return Err(at.error(
+                        SceneErrorKind::WrongValue {
+                            key: "com",
+                            takes: if statement == "payload" {
+                                "a vector [x, y, z] in the last link's frame"
+                            } else {
+                                "a vector [x, y, z] in the link's frame"
+                            },
+                        },
+                        f.value_span,
+                    ));
+                };
+                let what = what("centre of mass");
+                com = Some(vector3(
+                    at,
+                    v,
+                    f.value_span.clone(),
+                    "the centre of mass",
+                    &what,
+                )?);
+            }
+            "inertia" => {
+                let value = inertia_value(at, &f, &what("inertia"))?;
+                inertia = Some((value, f.span.clone()));
+            }
+            _ => {
+                return Err(at.error(
+                    SceneErrorKind::UnknownKey {
+                        statement,
+                        key: f.written.to_string(),
+                        known: LINK_KEYS,
+                    },
+                    f.key_span,
+                ))
+            }
+        }
+    }
+    let Some(mass) = mass else {
+        return Err(at.error(
+            SceneErrorKind::MissingKey {
+                what: who.to_string(),
+                key: "mass",
+                hint: if statement == "payload" {
+                    "a payload needs a mass, such as `mass=mL`"
+                } else {
+                    "a link needs a mass, such as `mass=m1`"
+                },
+            },
+            head,
+        ));
+    };
+    let (tensor, inertia_span) = match inertia {
+        Some((value, s)) => (Some(value.tensor(&mass)), Some(at.file(s))),
+        None => (None, None),
+    };
+    let link = Link {
+        mass,
+        com: com.unwrap_or_else(|| [Expr::zero(), Expr::zero(), Expr::zero()]),
+        inertia: tensor,
+    };
+    Ok((link, inertia_span))
 }
 
 /// The value of `inertia=`, lowered (a shape waits for the link's mass).

@@ -315,6 +315,7 @@ pub(super) fn robot(
         links,
         inputs,
         drives: Vec::new(),
+        payload: None,
     };
     robot
         .validate()
