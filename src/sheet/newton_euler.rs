@@ -101,6 +101,13 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
         out.push_str(&vector(lay, &format!("a_{{c,{k}}}"), &ne.a_c[i]));
         out.push_str(&vector(lay, &format!("a_{{e,{k}}}"), &ne.a_e[i]));
         out.push_str(&vector(lay, &format!("g_{{{k}}}"), &ne.g[i]));
+        if let (true, Some(a)) = (k == n, &ne.a_payload) {
+            out.push_str("The payload's centre of mass moves with link ");
+            out.push_str(&format!(
+                "{k}, as $a_{{c,{k}}}$ with $r_{{{k},c_L}}$ for $r_{{{k},c_{k}}}$:\n"
+            ));
+            out.push_str(&vector(lay, "a_{c,L}", a));
+        }
     }
     out.push_str(&format!(
         "\\subsection*{{Backward recursion}}\nStart with $f_{{{}}} = 0$ and $n_{{{}}} = 0$. Then \
@@ -110,6 +117,13 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
         n + 1,
         moment_formula(robot.convention)
     ));
+    if robot.payload.is_some() {
+        out.push_str(&format!(
+            "The payload adds its force $m_L (a_{{c,L}} - g_{n})$ to $f_{n}$, and to $n_{n}$ its moment \
+             about the centre of mass of link {n}, $m_L (a_{{c,L}} - g_{n}) \\times (r_{{{n},c_{n}}} - r_{{{n},c_L}}) \
+             + I_L \\alpha_{n} + \\omega_{n} \\times (I_L \\omega_{n})$.\n"
+        ));
+    }
     for i in (0..n).rev() {
         let k = i + 1;
         out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
