@@ -328,8 +328,8 @@ fn bad_scenes_are_located_errors() {
     let rr = |extra: &str| format!("{RR}{extra}");
     let rows: Vec<(String, usize, usize, &str)> = vec![
         // Syntax.
-        (rr("foo bar"), 5, 1, "expected a statement: robot, gravity, dh, joint, link, payload or inputs, found `foo`"),
-        (rr("  robots \"x\""), 5, 3, "expected a statement: robot, gravity, dh, joint, link, payload or inputs, found `robots`"),
+        (rr("foo bar"), 5, 1, "expected a statement: robot, gravity, dh, joint, link, payload, drive or inputs, found `foo`"),
+        (rr("  robots \"x\""), 5, 3, "expected a statement: robot, gravity, dh, joint, link, payload, drive or inputs, found `robots`"),
         (rr("robot PUMA"), 5, 7, "a name in double quotes"),
         (rr("robot \"PUMA"), 5, 7, "the name has no closing `\"`"),
         (rr("gravity 0, 0, -g"), 5, 9, "expected a vector such as `[0, 0, -g]`"),

@@ -46,6 +46,21 @@ thread_local! {
     static URDF_OPTIONS: RefCell<UrdfOptions> = RefCell::new(UrdfOptions::default());
 }
 
+thread_local! {
+    /// The side file of this run (`--extras`), set once per [`super::run`].
+    static EXTRAS: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+/// Sets the side file of this run.
+pub(super) fn set_extras(path: Option<String>) {
+    EXTRAS.with(|o| *o.borrow_mut() = path);
+}
+
+/// The side file of this run, if any.
+pub(super) fn extras_path() -> Option<String> {
+    EXTRAS.with(|o| o.borrow().clone())
+}
+
 /// Sets how this run reads URDF files.
 pub(super) fn set_urdf_options(opts: UrdfOptions) {
     URDF_OPTIONS.with(|o| *o.borrow_mut() = opts);
@@ -80,7 +95,19 @@ pub(super) fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError
     for w in &scene.warnings {
         super::output::stderr_line(&w.render(&name));
     }
-    Ok((name, scene.robot))
+    let mut robot = scene.robot;
+    if let Some(path) = extras_path() {
+        let text = std::fs::read_to_string(&path).map_err(|source| CliError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        let render =
+            |e: symdyn::parse::SceneError| CliError::Input(format!("error: {}", e.render(&path)));
+        symdyn::parse::parse_extras(&text)
+            .and_then(|extras| extras.apply(&mut robot))
+            .map_err(render)?;
+    }
+    Ok((name, robot))
 }
 
 /// `symdyn derive`.

@@ -45,6 +45,11 @@ pub struct Args {
     /// multiple of π/12 … π to it.
     #[arg(long, global = true)]
     pub no_snap: bool,
+    /// A side file in the scene language with what a URDF file cannot state, added to the robot:
+    /// `drive N gear=.. rotor=.. viscous=.. coulomb=..`, `payload mass=.. com=[..] inertia=..`,
+    /// `gravity [..]` and `inputs ..` lines (also adds to a scene).
+    #[arg(long, global = true, value_name = "FILE")]
+    pub extras: Option<String>,
 }
 
 /// The commands.
@@ -379,6 +384,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
         tip: args.tip_link,
         no_snap: args.no_snap,
     });
+    derive_cmds::set_extras(args.extras);
     match args.command {
         Command::Derive {
             scene,

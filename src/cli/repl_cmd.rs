@@ -16,8 +16,16 @@ use symdyn::repl::{directive, word_start, Directive, ReplError, Session};
 fn load(session: &mut Session, path: &str) -> Result<String, String> {
     let text =
         std::fs::read_to_string(path).map_err(|e| format!("error: cannot read {path}: {e}"))?;
+    let side = super::derive_cmds::extras_path();
+    let side_text = match &side {
+        Some(p) => {
+            Some(std::fs::read_to_string(p).map_err(|e| format!("error: cannot read {p}: {e}"))?)
+        }
+        None => None,
+    };
+    let extras = side.as_deref().zip(side_text.as_deref());
     session
-        .load_robot_text(path, &text, &super::derive_cmds::urdf_options())
+        .load_robot_text(path, &text, &super::derive_cmds::urdf_options(), extras)
         .map_err(|e| format!("error: {e}"))
 }
 

@@ -25,7 +25,10 @@ use pest::Parser;
 pub use error::{ParseError, ParseErrorKind};
 pub use grammar::Expected;
 pub use input::{parse_robot, InputError};
-pub use scene::{parse_scene, Scene, SceneError, SceneErrorKind, SceneExpected, SceneWarning};
+pub use scene::{
+    parse_extras, parse_scene, Extras, Scene, SceneError, SceneErrorKind, SceneExpected,
+    SceneWarning,
+};
 
 /// The scene the `symdyn` binary reads when given none: Spong et al., Problem 7.7, the 3-link
 /// Cartesian (PPP) manipulator (`examples/ppp.scene`).

@@ -90,20 +90,27 @@ impl Session {
     /// Loads a scene from its text (`name` is used in messages), replacing the current one; the user's
     /// variables are kept. The answer names the robot and repeats the scene's warnings.
     pub fn load_scene_text(&mut self, name: &str, text: &str) -> Result<String, ReplError> {
-        self.load_robot_text(name, text, &UrdfOptions::default())
+        self.load_robot_text(name, text, &UrdfOptions::default(), None)
     }
 
     /// [`Session::load_scene_text`] for a scene or a URDF file (told apart by its content), a URDF
-    /// file read with `opts`.
+    /// file read with `opts`, and with what a side file adds (`extras`: its name and text,
+    /// [`crate::parse::parse_extras`]).
     pub fn load_robot_text(
         &mut self,
         name: &str,
         text: &str,
         opts: &UrdfOptions,
+        extras: Option<(&str, &str)>,
     ) -> Result<String, ReplError> {
         let scene = parse_robot(text, opts).map_err(|e| ReplError::Parse(e.render(name)))?;
-        let der =
-            Derivation::new(scene.robot).map_err(|e| ReplError::Math(format!("{name}: {e}")))?;
+        let mut robot = scene.robot;
+        if let Some((side, side_text)) = extras {
+            crate::parse::parse_extras(side_text)
+                .and_then(|x| x.apply(&mut robot))
+                .map_err(|e| ReplError::Parse(e.render(side)))?;
+        }
+        let der = Derivation::new(robot).map_err(|e| ReplError::Math(format!("{name}: {e}")))?;
         let mut out = format!(
             "loaded {name}: {} ({} joints)",
             der.robot().name,

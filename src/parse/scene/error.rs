@@ -172,6 +172,20 @@ pub enum SceneErrorKind {
     /// A link whose joint is never stated.
     #[error("link {0} has no joint {0}")]
     LinkWithoutJoint(usize),
+    /// A `drive N` line for a joint the robot does not have.
+    #[error("drive {index} is for joint {index}, but the robot has {joints} joint{}", plural(*.joints))]
+    DriveWithoutJoint {
+        /// The joint number written.
+        index: usize,
+        /// The robot's joints.
+        joints: usize,
+    },
+    /// A statement a side file may not hold (it adds to a robot stated elsewhere).
+    #[error("a side file adds to a robot stated elsewhere, so it holds no `{0}` line: it states `drive N ...`, `payload ...`, `gravity [...]` and `inputs ...` lines only")]
+    NotInSideFile(&'static str),
+    /// Something a side file states that the robot states already.
+    #[error("{0} is stated both in the robot's file and in the side file: state it once")]
+    StatedTwice(String),
     /// A joint placed by `origin ... axis` and a DH row or table in one scene.
     #[error("{this} cannot share a scene with {other} (line {other_line}): state every joint by a DH row (`a= alpha= d= theta=`), or every joint by `origin xyz=[..] rpy=[..] axis=[..]`")]
     MixedForms {
@@ -257,7 +271,7 @@ impl SceneExpected {
     pub fn words(self) -> &'static str {
         match self {
             SceneExpected::Statement => {
-                "a statement: robot, gravity, dh, joint, link, payload or inputs"
+                "a statement: robot, gravity, dh, joint, link, payload, drive or inputs"
             }
             SceneExpected::QuotedName => "a name in double quotes, such as `robot \"PUMA 560\"`",
             SceneExpected::Vector => "a vector such as `[0, 0, -g]`",
@@ -395,6 +409,7 @@ fn context(line: &str) -> Context {
     match first {
         "joint" => Context::Joint,
         "link" | "payload" => Context::Link,
+        "drive" => Context::Joint,
         _ => Context::Other,
     }
 }
@@ -481,6 +496,7 @@ pub(crate) fn from_pest(
             | Rule::joint
             | Rule::link
             | Rule::payload
+            | Rule::drive
             | Rule::inputs
             | Rule::robot_keyword
             | Rule::gravity_keyword
@@ -488,6 +504,7 @@ pub(crate) fn from_pest(
             | Rule::joint_keyword
             | Rule::link_keyword
             | Rule::payload_keyword
+            | Rule::drive_keyword
             | Rule::inputs_keyword => SceneExpected::Statement,
             Rule::quoted => {
                 if rest.starts_with('"') {

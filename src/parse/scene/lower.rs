@@ -242,6 +242,18 @@ struct JointEntry {
     drive: Drive,
 }
 
+/// A `drive N` line, with where.
+pub(super) struct DriveEntry {
+    /// The joint, from 1.
+    pub(super) index: usize,
+    /// What it states.
+    pub(super) drive: Drive,
+    /// Its line.
+    pub(super) line: usize,
+    /// The file range of `drive N`.
+    pub(super) head: Range<usize>,
+}
+
 /// A link as stated, with where.
 struct LinkEntry {
     index: usize,
@@ -275,7 +287,13 @@ pub(super) struct Builder {
     links: Vec<LinkEntry>,
     /// The payload and the line that states it.
     payload: Option<(Link, usize)>,
+    /// The file range of the `payload` keyword.
+    payload_head: Range<usize>,
+    /// The `drive N` lines.
+    drives: Vec<DriveEntry>,
     inputs: Option<InputsEntry>,
+    /// Reading a side file ([`super::parse_extras`]): no robot, joint, link or `dh` lines.
+    pub(super) side_file: bool,
 }
 
 /// The error for a statement that may appear once, stated again.
@@ -355,6 +373,18 @@ impl Builder {
             return Ok(());
         };
         let keyword_span = span(&keyword);
+        if self.side_file {
+            let refused = match rule {
+                Rule::robot => Some("robot"),
+                Rule::dh => Some("dh"),
+                Rule::joint => Some("joint"),
+                Rule::link => Some("link"),
+                _ => None,
+            };
+            if let Some(what) = refused {
+                return Err(at.error(SceneErrorKind::NotInSideFile(what), keyword_span));
+            }
+        }
         match rule {
             Rule::robot => {
                 once(at, &self.name, "robot", keyword_span)?;
@@ -404,14 +434,69 @@ impl Builder {
             Rule::joint => self.joint(at, keyword_span, parts)?,
             Rule::link => self.link(at, keyword_span, parts)?,
             Rule::payload => {
+                let keyword_span_copy = keyword_span.clone();
                 once(at, &self.payload, "payload", keyword_span.clone())?;
                 let (link, _) = body(at, parts, "the payload", keyword_span)?;
                 self.payload = Some((link, at.line));
+                self.payload_head = at.file(keyword_span_copy);
             }
+            Rule::drive => self.drive(at, keyword_span, parts)?,
             Rule::inputs => self.inputs(at, keyword_span, parts)?,
             _ => {}
         }
         Ok(())
+    }
+
+    /// `drive N gear=.. rotor=.. viscous=.. coulomb=..`.
+    fn drive<'i>(
+        &mut self,
+        at: &At<'_>,
+        keyword: Range<usize>,
+        mut parts: impl Iterator<Item = Pair<'i, Rule>>,
+    ) -> Result<(), SceneError> {
+        let Some(number) = parts.next() else {
+            return Ok(());
+        };
+        let n = index(at, &number, "joint")?;
+        let head = keyword.start..span(&number).end;
+        if let Some(first) = self.drives.iter().find(|d| d.index == n) {
+            return Err(at.error(
+                SceneErrorKind::Duplicate {
+                    what: format!("drive {n}"),
+                    first_line: first.line,
+                },
+                span(&number),
+            ));
+        }
+        let (rest, drive) = self.drive_fields(at, n, fields(at, parts)?)?;
+        if let Some(f) = rest.first() {
+            return Err(at.error(
+                SceneErrorKind::UnknownKey {
+                    statement: "drive",
+                    key: f.written.to_string(),
+                    known: "gear, rotor, viscous and coulomb",
+                },
+                f.key_span.clone(),
+            ));
+        }
+        self.drives.push(DriveEntry {
+            index: n,
+            drive,
+            line: at.line,
+            head: at.file(head),
+        });
+        Ok(())
+    }
+
+    /// What a side file states, once every line is read.
+    pub(super) fn extras(self, source: &str) -> super::Extras {
+        super::Extras {
+            source: source.to_string(),
+            gravity: self.gravity.map(|(g, _)| g),
+            payload: self.payload.map(|(l, _)| (l, self.payload_head)),
+            drives: self.drives,
+            inputs: self.inputs.map(|i| (i.names, i.span)),
+        }
     }
 
     /// `joint N type fields...`.
@@ -815,8 +900,30 @@ impl Builder {
         let joint_spans: Vec<[Range<usize>; 4]> =
             self.joints.iter().map(|j| j.fields.clone()).collect();
         let first_joint = self.joints[0].head.clone();
-        let drives: Vec<Drive> = if self.joints.iter().any(|j| !j.drive.is_none()) {
-            self.joints.iter().map(|j| j.drive.clone()).collect()
+        let mut joints = self.joints;
+        for d in self.drives {
+            let Some(joint) = joints.get_mut(d.index - 1) else {
+                return error(
+                    SceneErrorKind::DriveWithoutJoint {
+                        index: d.index,
+                        joints: n,
+                    },
+                    d.head,
+                );
+            };
+            if !joint.drive.is_none() {
+                return error(
+                    SceneErrorKind::Duplicate {
+                        what: format!("the drive of joint {}", d.index),
+                        first_line: joint.line,
+                    },
+                    d.head,
+                );
+            }
+            joint.drive = d.drive;
+        }
+        let drives: Vec<Drive> = if joints.iter().any(|j| !j.drive.is_none()) {
+            joints.iter().map(|j| j.drive.clone()).collect()
         } else {
             Vec::new()
         };
@@ -828,7 +935,7 @@ impl Builder {
             } else {
                 self.convention.map_or(Convention::Standard, |(c, _)| c)
             },
-            joints: self.joints.into_iter().map(|j| j.joint).collect(),
+            joints: joints.into_iter().map(|j| j.joint).collect(),
             links: robot_links,
             inputs,
             drives,

@@ -29,7 +29,12 @@
 //! | `joint N revolute\|prismatic a=.. alpha=.. d=.. theta=..` | DH row `N`; all four fields, once each | an error |
 //! | `joint N revolute\|prismatic origin [xyz=[..]] [rpy=[..]] [axis=[..]]` | joint `N` placed as URDF places it ([`placement`](crate::dynamics::placement)): `qN` about or along the axis (exact unit vector, normalised), no `dh` line and no DH row in the same scene | an error |
 //! | `link N mass=.. [com=[x, y, z]] [inertia=..]` | link `N` in frame `N` | an error |
+//! | `payload mass=.. [com=[x, y, z]] [inertia=..]` | a rigid body fixed to the last link, in frame `n` | none |
+//! | `drive N [gear=..] [rotor=..] [viscous=..] [coulomb=..]` | joint `N`'s motor and friction (the same fields may stand on the joint's line instead) | none |
 //! | `inputs name...` | one name per joint for the actuated forces/torques | `tau1 .. tauN` |
+//!
+//! A *side file* ([`parse_extras`]) adds to a robot stated elsewhere, such as a URDF file, what that
+//! file cannot state: `drive`, `payload`, `gravity` and `inputs` lines only.
 //!
 //! Joints are numbered 1, 2, 3, ... in order; every joint has one link and every link a joint, in any
 //! order. The joint variable `qN` sits in `theta` (revolute) or `d` (prismatic) of joint `N` only,
@@ -55,7 +60,8 @@ mod lower;
 
 use super::grammar::{Grammar, Rule};
 use super::lower::check_paren_depth;
-use crate::dynamics::Robot;
+use crate::algebra::Expr;
+use crate::dynamics::{Link, Robot};
 use pest::Parser;
 
 pub use error::{SceneError, SceneErrorKind, SceneExpected, SceneWarning};
@@ -79,6 +85,12 @@ pub struct Scene {
 /// symmetric, a coordinate in a parameter, or a number of inputs other than the number of joints.
 pub fn parse_scene(source: &str) -> Result<Scene, SceneError> {
     let mut builder = lower::Builder::default();
+    read_lines(&mut builder, source)?;
+    builder.finish(source)
+}
+
+/// Every line of `source` into `builder`.
+fn read_lines(builder: &mut lower::Builder, source: &str) -> Result<(), SceneError> {
     let mut offset = 0;
     for (i, raw) in source.split('\n').enumerate() {
         let text = raw.strip_suffix('\r').unwrap_or(raw);
@@ -92,10 +104,102 @@ pub fn parse_scene(source: &str) -> Result<Scene, SceneError> {
             offset: offset + skip,
             line: i + 1,
         };
-        line(&mut builder, &at, text)?;
+        line(builder, &at, text)?;
         offset += raw.len() + 1;
     }
-    builder.finish(source)
+    Ok(())
+}
+
+/// What a side file adds to a robot stated elsewhere (a URDF file cannot state drives, a payload or
+/// gravity): see [`parse_extras`] and [`Extras::apply`].
+pub struct Extras {
+    /// The side file's text, for its errors.
+    source: String,
+    /// `gravity [...]`.
+    pub gravity: Option<[Expr; 3]>,
+    /// `payload ...`, with where.
+    payload: Option<(Link, std::ops::Range<usize>)>,
+    /// `drive N ...` lines.
+    drives: Vec<lower::DriveEntry>,
+    /// `inputs ...`, with where.
+    inputs: Option<(Vec<String>, std::ops::Range<usize>)>,
+}
+
+/// Reads a side file: `drive N ...`, `payload ...`, `gravity [...]` and `inputs ...` lines of the scene
+/// language, nothing else.
+///
+/// # Errors
+///
+/// The first problem, as [`parse_scene`] reports it, and any `robot`, `dh`, `joint` or `link` line.
+pub fn parse_extras(source: &str) -> Result<Extras, SceneError> {
+    let mut builder = lower::Builder::default();
+    builder.side_file = true;
+    read_lines(&mut builder, source)?;
+    Ok(builder.extras(source))
+}
+
+impl Extras {
+    /// Adds what the side file states to `robot`: gravity replaces the robot's (a URDF file states
+    /// none), the payload and the drives must be new to it, `inputs` must name every joint.
+    ///
+    /// # Errors
+    ///
+    /// A drive for a joint the robot does not have, a payload or a drive the robot states already, a
+    /// number of inputs other than its joints, or what [`Robot::validate`] refuses; located in the
+    /// side file.
+    pub fn apply(&self, robot: &mut Robot) -> Result<(), SceneError> {
+        let n = robot.dof();
+        let error = |kind, span| Err(SceneError::new(kind, &self.source, span));
+        if let Some(g) = &self.gravity {
+            robot.gravity = g.clone();
+        }
+        if let Some((p, head)) = &self.payload {
+            if robot.payload.is_some() {
+                return error(
+                    SceneErrorKind::StatedTwice("the payload".into()),
+                    head.clone(),
+                );
+            }
+            robot.payload = Some(p.clone());
+        }
+        if !self.drives.is_empty() && robot.drives.is_empty() {
+            robot.drives = vec![crate::dynamics::Drive::none(); n];
+        }
+        for d in &self.drives {
+            if d.index > n {
+                return error(
+                    SceneErrorKind::DriveWithoutJoint {
+                        index: d.index,
+                        joints: n,
+                    },
+                    d.head.clone(),
+                );
+            }
+            if !robot.drives[d.index - 1].is_none() {
+                return error(
+                    SceneErrorKind::StatedTwice(format!("the drive of joint {}", d.index)),
+                    d.head.clone(),
+                );
+            }
+            robot.drives[d.index - 1] = d.drive.clone();
+        }
+        if let Some((names, span)) = &self.inputs {
+            if names.len() != n {
+                return error(
+                    SceneErrorKind::InputCount {
+                        names: names.len(),
+                        joints: n,
+                    },
+                    span.clone(),
+                );
+            }
+            robot.inputs = names.clone();
+        }
+        if let Err(e) = robot.validate() {
+            return error(SceneErrorKind::Model(e), 0..0);
+        }
+        Ok(())
+    }
 }
 
 /// Parses and lowers one line, `text`, whose place in the scene is `at`.
