@@ -14,8 +14,30 @@ use num_traits::ToPrimitive;
 /// The prime modulus `2^61 − 1`.
 pub const P: u64 = (1 << 61) - 1;
 
+/// `a b mod p` for residues `a, b < p`: `p = 2^61 − 1` is a Mersenne prime, so `2^61 ≡ 1` and the
+/// 122-bit product folds into 61 bits with shifts and adds (no 128-bit division).
 fn mul_mod(a: u64, b: u64) -> u64 {
-    ((a as u128 * b as u128) % P as u128) as u64
+    let x = a as u128 * b as u128;
+    let r = (x as u64 & P) + (x >> 61) as u64; // < 2^62
+    let r = (r & P) + (r >> 61); // ≤ p
+    if r >= P {
+        r - P
+    } else {
+        r
+    }
+}
+
+/// `1/2 mod p`: `2 · 2^60 = 2^61 ≡ 1`.
+const HALF: u64 = 1 << 60;
+
+/// `a + b mod p` for residues `a, b < p`.
+fn add_mod(a: u64, b: u64) -> u64 {
+    let r = a + b;
+    if r >= P {
+        r - P
+    } else {
+        r
+    }
 }
 
 fn pow_mod(mut a: u64, mut e: u64) -> u64 {
@@ -52,12 +74,14 @@ pub struct Fp(pub u64);
 impl Ring for Fp {
     fn from_rational(r: &Rational) -> Self {
         match r.as_small() {
+            Some((n, 1)) => Fp(int_mod(n)),
+            Some((n, 2)) => Fp(mul_mod(int_mod(n), HALF)),
             Some((n, d)) => Fp(mul_mod(int_mod(n), inv_mod(int_mod(d)))),
             None => Fp(to_mod(r).unwrap_or(0)),
         }
     }
     fn add(&self, o: &Self) -> Self {
-        Fp((self.0 + o.0) % P)
+        Fp(add_mod(self.0, o.0))
     }
     fn mul(&self, o: &Self) -> Self {
         Fp(mul_mod(self.0, o.0))
@@ -260,6 +284,26 @@ mod tests {
         assert_eq!(e.pivots, vec![0, 1]);
         assert_eq!(e.rows[0][2], Rational::int(1));
         assert_eq!(e.rows[1][2], Rational::int(2));
+    }
+
+    #[test]
+    fn the_mersenne_fold_is_the_remainder() {
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        let mut samples = vec![0, 1, 2, P - 1, P - 2, 1 << 60, (1 << 61) - 2, 12345];
+        for _ in 0..2000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            samples.push(x % P);
+        }
+        for &a in &samples {
+            for &b in samples.iter().take(40) {
+                let want = ((a as u128 * b as u128) % P as u128) as u64;
+                assert_eq!(mul_mod(a, b), want, "{a} * {b}");
+                assert_eq!(add_mod(a, b), (a + b) % P, "{a} + {b}");
+                assert_eq!(mul_mod(HALF, 2), 1);
+            }
+        }
     }
 
     #[test]
