@@ -28,7 +28,7 @@
 //! constants in `Y`, never random.
 
 use super::error::IdentifyError;
-use super::linalg::{int_mod, reconstruct, solve, EchelonMod, Fp, P};
+use super::linalg::{int_mod, reconstruct, solve_fast, EchelonMod, Fp, P};
 use super::regressor::{Gravity, Regressor, GRAVITY_INPUT};
 use super::standard::{Quantity, StandardParam};
 use crate::algebra::atom::{self, AtomId, Class};
@@ -601,7 +601,7 @@ fn interpolate(
         .flat_map(|d| (0..rank).map(move |r| (d, r)))
         .map(|(d, r)| values.iter().map(|v| v[d][r].clone()).collect())
         .collect();
-    let sol = solve(&a, &rhs).ok_or_else(|| {
+    let sol = solve_fast(&a, &rhs).ok_or_else(|| {
         "a grouping coefficient is no polynomial of degree at most 2 in the lengths".to_string()
     })?;
     let mono_polys: Vec<Poly> = monos

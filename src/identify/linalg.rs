@@ -161,7 +161,8 @@ impl EchelonMod {
                 let f = row[c];
                 for (x, &p) in row.iter_mut().zip(&pivot_row).skip(c) {
                     if p != 0 {
-                        *x = (*x + P - mul_mod(f, p)) % P;
+                        let t = mul_mod(f, p);
+                        *x = if *x >= t { *x - t } else { *x + P - t };
                     }
                 }
             }
@@ -238,6 +239,56 @@ impl Echelon {
 /// A rough size of a rational: the bits of its numerator and denominator.
 fn size(r: &Rational) -> u64 {
     r.numer().bits() + r.denom().bits()
+}
+
+/// [`solve`], first modulo `p` with every unknown recovered by rational reconstruction, which is
+/// fast for many right sides whose solutions are small rationals (the grouping coefficients); the
+/// recovered solution is accepted only if it satisfies every equation exactly over ℚ, else the
+/// system is solved over ℚ.
+pub fn solve_fast(a: &[Vec<Rational>], bs: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
+    if let Some(x) = solve_mod(a, bs) {
+        let exact = bs.iter().zip(&x).all(|(b, x)| {
+            a.iter().zip(b).all(|(row, rhs)| {
+                let lhs = row
+                    .iter()
+                    .zip(x)
+                    .filter(|(c, v)| !c.is_zero() && !v.is_zero())
+                    .fold(Rational::zero(), |acc, (c, v)| &acc + &(c * v));
+                &lhs == rhs
+            })
+        });
+        if exact {
+            return Some(x);
+        }
+    }
+    solve(a, bs)
+}
+
+/// `A x = b` modulo `p`, each unknown reconstructed as a rational; `None` when `A` has not full
+/// column rank modulo `p`, a system is inconsistent or an unknown has no small rational.
+fn solve_mod(a: &[Vec<Rational>], bs: &[Vec<Rational>]) -> Option<Vec<Vec<Rational>>> {
+    let unknowns = a.first().map_or(0, Vec::len);
+    let m: Vec<Vec<u64>> = a
+        .iter()
+        .enumerate()
+        .map(|(r, row)| {
+            row.iter()
+                .chain(bs.iter().map(|b| &b[r]))
+                .map(to_mod)
+                .collect::<Option<Vec<u64>>>()
+        })
+        .collect::<Option<_>>()?;
+    let e = EchelonMod::of(m);
+    if e.pivots.len() != unknowns || e.pivots.iter().enumerate().any(|(i, &p)| i != p) {
+        return None;
+    }
+    (0..bs.len())
+        .map(|k| {
+            (0..unknowns)
+                .map(|r| reconstruct(e.rows[r][unknowns + k]))
+                .collect()
+        })
+        .collect()
 }
 
 /// Solves the square or overdetermined system `A x = b` for each right side in `bs` (columns of
@@ -319,5 +370,20 @@ mod tests {
         let a = vec![r(&[1, 0]), r(&[0, 1]), r(&[1, 1])];
         assert_eq!(solve(&a, &[r(&[2, 3, 5])]), Some(vec![r(&[2, 3])]));
         assert_eq!(solve(&a, &[r(&[2, 3, 6])]), None);
+        assert_eq!(solve_fast(&a, &[r(&[2, 3, 5])]), Some(vec![r(&[2, 3])]));
+        assert_eq!(solve_fast(&a, &[r(&[2, 3, 6])]), None);
+    }
+
+    #[test]
+    fn a_solution_too_large_to_reconstruct_is_found_exactly() {
+        // x = 2^70 + 1/3 has no rational reconstruction modulo p (|numerator| ≥ sqrt(p/2)): the fast
+        // solver must still give it, from the exact elimination.
+        let big = Rational::from_bigints((BigInt::from(1) << 70) * 3 + 1, BigInt::from(3)).unwrap();
+        let a = vec![r(&[1, 0]), r(&[0, 2]), r(&[1, 1])];
+        let b = vec![big.clone(), Rational::int(4), &big + &Rational::int(2)];
+        assert_eq!(
+            solve_fast(&a, &[b]),
+            Some(vec![vec![big, Rational::int(2)]])
+        );
     }
 }
