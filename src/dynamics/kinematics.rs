@@ -213,6 +213,13 @@ impl Kinematics {
     }
 }
 
+/// A 3×n matrix from its columns, as polynomials.
+pub fn columns_to_poly_rows(cols: &[Vec3<Poly>]) -> Vec<Vec<Poly>> {
+    (0..3)
+        .map(|k| cols.iter().map(|c| c.0[k].clone()).collect())
+        .collect()
+}
+
 /// A 3×n matrix from its columns, as expressions.
 pub fn columns_to_rows(cols: &[Vec3<Poly>]) -> Vec<Vec<Expr>> {
     (0..3)

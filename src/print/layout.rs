@@ -8,7 +8,7 @@
 //! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
 //! `^`, `_`) nothing. Subscripts count as full characters, so the estimate errs on the wide side.
 
-use crate::algebra::tidy::{tidy_by, Grouping};
+use crate::algebra::tidy::{tidy_by, Grouping, Tidy};
 use crate::algebra::{Expr, Kind, Symbol};
 use crate::print::equation::{Body, Shown};
 use crate::print::{self, Style};
@@ -375,17 +375,17 @@ impl Layout {
 
     /// `lhs = [rows]` as one `bmatrix` when it fits the line, otherwise entry by entry as
     /// `entry(i, j) = …` (1-based), only `j >= i` when `symmetric`. Entries are tidied by `grouping`.
-    pub fn matrix(
+    pub fn matrix<T: Tidy>(
         &mut self,
         lhs: &str,
-        rows: &[Vec<Expr>],
+        rows: &[Vec<T>],
         entry: &dyn Fn(usize, usize) -> String,
         symmetric: bool,
         grouping: Grouping,
     ) -> String {
         let shown: Vec<Vec<Expr>> = rows
             .iter()
-            .map(|r| r.iter().map(|e| tidy_by(e, grouping)).collect())
+            .map(|r| r.iter().map(|e| e.tidy_by(grouping)).collect())
             .collect();
         let cols = shown.first().map_or(0, Vec::len);
         let col_width: usize = (0..cols)
@@ -435,14 +435,14 @@ impl Layout {
 
     /// `lhs = [v]` as a column when it fits, otherwise component by component `component(k) = …`
     /// (0-based `k`). Components are tidied by `grouping`.
-    pub fn vector(
+    pub fn vector<T: Tidy>(
         &mut self,
         lhs: &str,
-        v: &[Expr],
+        v: &[T],
         component: &dyn Fn(usize) -> String,
         grouping: Grouping,
     ) -> String {
-        let shown: Vec<Expr> = v.iter().map(|e| tidy_by(e, grouping)).collect();
+        let shown: Vec<Expr> = v.iter().map(|e| e.tidy_by(grouping)).collect();
         let widest = shown
             .iter()
             .map(|e| width(&print::to_string(e, Style::Latex)))

@@ -5,7 +5,7 @@ use super::layout::Layout;
 use super::{sym, Scope};
 use crate::algebra::tidy::Grouping;
 use crate::algebra::Poly;
-use crate::dynamics::kinematics::columns_to_rows;
+use crate::dynamics::kinematics::columns_to_poly_rows;
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::Derivation;
 use crate::report::lhs_terms;
@@ -45,7 +45,7 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, scope: Scope) -> Strin
                 move |r: usize, c: usize| format!("(J_{{\\omega_{{{}}}}})_{{{r}{c}}}", i + 1);
             out.push_str(&lay.matrix(
                 &format!("J_{{\\omega_{{{}}}}}", i + 1),
-                &columns_to_rows(&kin.jw[i]),
+                &columns_to_poly_rows(&kin.jw[i]),
                 &entry,
                 false,
                 Grouping::Trig,
@@ -57,7 +57,7 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, scope: Scope) -> Strin
         let entry = move |r: usize, c: usize| format!("(J_{{v_{{{}}}}})_{{{r}{c}}}", i + 1);
         out.push_str(&lay.matrix(
             &format!("J_{{v_{{{}}}}}", i + 1),
-            &columns_to_rows(&kin.jv[i]),
+            &columns_to_poly_rows(&kin.jv[i]),
             &entry,
             false,
             Grouping::Trig,
@@ -101,14 +101,9 @@ fn mass_matrix(der: &Derivation, lay: &mut Layout) -> String {
         "Hence the inertia matrix is\n\\[ D(q) = \\sum_{i=1}^{n} \\left( m_i J_{v_i}^T J_{v_i} \
          + J_{\\omega_i}^T R^0_i I_i (R^0_i)^T J_{\\omega_i} \\right) \\]\n",
     );
-    let d: Vec<Vec<_>> = der
-        .lagrange()
-        .d
-        .iter()
-        .map(|r| r.iter().map(Poly::to_expr).collect())
-        .collect();
+    let d = &der.lagrange().d;
     let entry = |r: usize, c: usize| format!("d_{{{r}{c}}}");
-    out.push_str(&lay.matrix("D(q)", &d, &entry, true, Grouping::Leading));
+    out.push_str(&lay.matrix("D(q)", d, &entry, true, Grouping::Leading));
     out
 }
 
@@ -118,9 +113,8 @@ fn gravity(der: &Derivation, lay: &mut Layout) -> String {
     let mut out = String::from("The potential energy of the manipulator is\n");
     out.push_str(&lay.equation("P", &el.p.to_expr(), Grouping::Trig));
     out.push_str("Hence $g_k(q) = \\partial P / \\partial q_k$:\n");
-    let g: Vec<_> = el.g.iter().map(Poly::to_expr).collect();
     let component = |k: usize| format!("g_{{{}}}", k + 1);
-    out.push_str(&lay.vector("g(q)", &g, &component, Grouping::Trig));
+    out.push_str(&lay.vector("g(q)", &el.g, &component, Grouping::Trig));
     out
 }
 

@@ -8,7 +8,7 @@ use super::sym;
 use crate::algebra::tidy::Grouping;
 use crate::algebra::{Poly, Rational, Symbol};
 use crate::dynamics::compact::CompactDynamics;
-use crate::dynamics::kinematics::columns_to_rows;
+use crate::dynamics::kinematics::columns_to_poly_rows;
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::Derivation;
 use crate::print::layout::Layout;
@@ -35,7 +35,7 @@ fn jacobians(der: &Derivation, lay: &mut Layout) -> String {
         let entry = move |r: usize, c: usize| format!("(J_{{\\omega_{{{}}}}})_{{{r}{c}}}", i + 1);
         out.push_str(&lay.matrix(
             &format!("J_{{\\omega_{{{}}}}}", i + 1),
-            &columns_to_rows(&kin.jw[i]),
+            &columns_to_poly_rows(&kin.jw[i]),
             &entry,
             false,
             Grouping::Trig,
@@ -46,7 +46,7 @@ fn jacobians(der: &Derivation, lay: &mut Layout) -> String {
         let entry = move |r: usize, c: usize| format!("(J_{{v_{{{}}}}})_{{{r}{c}}}", i + 1);
         out.push_str(&lay.matrix(
             &format!("J_{{v_{{{}}}}}", i + 1),
-            &columns_to_rows(&kin.jv[i]),
+            &columns_to_poly_rows(&kin.jv[i]),
             &entry,
             false,
             Grouping::Trig,

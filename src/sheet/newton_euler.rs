@@ -31,7 +31,7 @@ fn vector(lay: &mut Layout, name: &str, v: &Vec3<Poly>) -> String {
     let base = name.to_string();
     lay.vector(
         name,
-        &exprs(v),
+        &v.0,
         &move |k| format!("({base})_{{{}}}", ["x", "y", "z"][k]),
         Grouping::Leading,
     )

@@ -56,9 +56,12 @@ pub const TRIG_RULES: [Rule; 3] = [
 ///
 /// `cos(q2) cos(q3) − sin(q2) sin(q3)` gives `cos(q2 + q3)`.
 pub fn contract_trig(e: &Expr) -> Expr {
-    fixpoint(&normal_form(e), PASS_LIMIT, |e| {
-        first_change(&TRIG_RULES, e)
-    })
+    contract_normal(&normal_form(e))
+}
+
+/// [`contract_trig`] of an expression already in normal form (`p.to_expr()` of a polynomial `p`).
+pub fn contract_normal(e: &Expr) -> Expr {
+    fixpoint(e, PASS_LIMIT, |e| first_change(&TRIG_RULES, e))
 }
 
 /// One angle-addition identity read backwards: `c f₁(A) g₁(B) + sign · c f₂(A) g₂(B) = c h(A ± B)`.

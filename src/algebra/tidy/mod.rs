@@ -67,6 +67,32 @@ pub fn tidy_by(e: &Expr, grouping: Grouping) -> Expr {
     group(&contract_trig(e), grouping)
 }
 
+/// [`tidy_by`] of a polynomial, which is its own normal form: the conversion from an expression that
+/// [`tidy_by`] starts with (the larger part of its cost on the intermediate vectors of a sheet) is
+/// skipped. The same result as `tidy_by(&p.to_expr(), grouping)`.
+pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
+    group(&contract::contract_normal(&p.to_expr()), grouping)
+}
+
+/// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial
+/// ([`tidy_poly_by`]).
+pub trait Tidy {
+    /// The display form.
+    fn tidy_by(&self, grouping: Grouping) -> Expr;
+}
+
+impl Tidy for Expr {
+    fn tidy_by(&self, grouping: Grouping) -> Expr {
+        tidy_by(self, grouping)
+    }
+}
+
+impl Tidy for crate::algebra::Poly {
+    fn tidy_by(&self, grouping: Grouping) -> Expr {
+        tidy_poly_by(self, grouping)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -82,6 +108,22 @@ mod tests {
         assert_eq!(got, expected, "tidy({input:?})");
         assert!(equal(&input, &got), "value changed: {input:?} -> {got:?}");
         assert_eq!(tidy(&got), got, "tidy is not idempotent on {input:?}");
+    }
+
+    #[test]
+    fn a_polynomial_tidies_as_its_expression() {
+        for text in [
+            "m1*g*cos(q1) + m2*g*cos(q1) + m2*g*(cos(q1)*cos(q2) - sin(q1)*sin(q2))",
+            "m2*l1^2 + m2*lc2^2 + 2*m2*l1*lc2*cos(q2) + I2",
+            "a - a*cos(q2)^2 + 2*sin(q1)*cos(q1)",
+            "0",
+        ] {
+            let e = crate::parse::parse_expr(text).unwrap();
+            let p = crate::algebra::to_poly(&e);
+            for g in [Grouping::Trig, Grouping::Leading] {
+                assert_eq!(tidy_poly_by(&p, g), tidy_by(&e, g), "{text}");
+            }
+        }
     }
 
     #[test]
