@@ -135,37 +135,50 @@ fn vec_of(e: &[Expr; 3]) -> Vec3<Poly> {
     Vec3(std::array::from_fn(|k| to_poly(&e[k])))
 }
 
-/// Runs the compact recursion of a validated robot into `arena` and returns `τ` (see the
-/// [module docs](self)); `joints` are the robot's local joint frames.
-pub fn tau_into(
+/// What the forward recursion knows of link `i` when it is done, in frame `i`.
+#[derive(Clone, Debug)]
+pub struct LinkMotion {
+    /// `ω_i` (named `w{i}_k`).
+    pub w: Vec3<Poly>,
+    /// `α_i` (named `wd{i}_k`).
+    pub wd: Vec3<Poly>,
+    /// `U_i = S(α_i) + S(ω_i)²` (named `U{i}_rc`).
+    pub u: Mat3<Poly>,
+    /// The acceleration, less gravity, where joint `i` acts (named `aj{i}_k`).
+    pub aj: Vec3<Poly>,
+    /// `r_{J,i}`: from the joint point to `o_i`.
+    pub r_jo: Vec3<Poly>,
+}
+
+impl LinkMotion {
+    /// `a_e,i − g_i`: the acceleration of `o_i`, less gravity.
+    pub fn origin_accel(&self) -> Vec3<Poly> {
+        self.aj.add(&self.u.mul_vec(&self.r_jo))
+    }
+}
+
+/// The forward recursion of the compact Newton–Euler, with gravity as an upward acceleration of the
+/// base: `ω_i`, `α_i`, `U_i` and the joint point's acceleration named link by link into `arena`;
+/// `done` is called for each link as soon as its motion is named (so what it names comes next in the
+/// arena). The one forward pass of [`tau_into`] and of the regressor ([`crate::identify`]). Returns
+/// which links rotate (some joint up to them is revolute) and the named `a_e,i − g_i` of every link
+/// but the last (`ae{i}_k`).
+pub fn forward(
     robot: &Robot,
     joints: &[JointFrame],
     arena: &mut Compact,
     motion: Motion,
-) -> Vec<Poly> {
-    let n = robot.dof();
+    done: &mut dyn FnMut(&mut Compact, usize, &LinkMotion),
+) -> (Vec<bool>, Vec<Vec3<Poly>>) {
+    let n = joints.len();
     let two = Poly::int(2);
-    let rate = |k: u32, order: u8| -> Poly {
-        let keep = match motion {
-            Motion::Full => true,
-            Motion::NoAcceleration => order == 1,
-            Motion::Static => false,
-        };
-        if keep {
-            Poly::symbol(&Symbol::Coord { index: k, order })
-        } else {
-            Poly::zero()
-        }
-    };
-
-    // Forward: ω, α, U, the accelerations less gravity.
+    let rate = |k: u32, order: u8| rate_of(motion, k, order);
     let (mut w_prev, mut wd_prev) = (Vec3::<Poly>::zero(), Vec3::<Poly>::zero());
     let mut ae_prev = vec_of(&robot.gravity).scale(&Poly::int(-1));
     let mut u_prev = Mat3::<Poly>::zero();
     let mut rotates = Vec::with_capacity(n);
+    let mut origins = Vec::with_capacity(n);
     let mut any_revolute = false;
-    let (mut omega, mut alpha, mut a_c) = (Vec::new(), Vec::new(), Vec::new());
-    let mut a_payload = None;
     for (idx, jf) in joints.iter().enumerate() {
         let i = idx + 1;
         any_revolute |= jf.kind == JointKind::Revolute;
@@ -203,26 +216,68 @@ pub fn tau_into(
         let aj = name_vec(arena, aj, &format!("aj{i}"));
         let s2 = skew(&w);
         let u = name_mat(arena, mat_add(&skew(&wd), &s2.mul(&s2)), &format!("U{i}"));
-        let link = &robot.links[idx];
         let r_jo = rt.mul_vec(&jf.origin.sub(&jf.joint_point));
-        let r_jc = r_jo.add(&vec_of(&link.com));
+        let m = LinkMotion { w, wd, u, aj, r_jo };
+        done(arena, idx, &m);
+        // The next link needs a_e,i.
+        if i < n {
+            ae_prev = name_vec(arena, m.origin_accel(), &format!("ae{i}"));
+            origins.push(ae_prev.clone());
+        }
+        w_prev = m.w;
+        wd_prev = m.wd;
+        u_prev = m.u;
+    }
+    (rotates, origins)
+}
+
+/// The joint rate `q̇_k` (order 1) or `q̈_k` (order 2) as `motion` keeps it (zero otherwise).
+fn rate_of(motion: Motion, k: u32, order: u8) -> Poly {
+    let keep = match motion {
+        Motion::Full => true,
+        Motion::NoAcceleration => order == 1,
+        Motion::Static => false,
+    };
+    if keep {
+        Poly::symbol(&Symbol::Coord { index: k, order })
+    } else {
+        Poly::zero()
+    }
+}
+
+/// Runs the compact recursion of a validated robot into `arena` and returns `τ` (see the
+/// [module docs](self)); `joints` are the robot's local joint frames.
+pub fn tau_into(
+    robot: &Robot,
+    joints: &[JointFrame],
+    arena: &mut Compact,
+    motion: Motion,
+) -> Vec<Poly> {
+    let n = robot.dof();
+    let rate = |k: u32, order: u8| rate_of(motion, k, order);
+
+    // Forward: ω, α, U, the accelerations less gravity; a_c,i and a_e,i named as each link is done.
+    let (mut omega, mut alpha, mut a_c) = (Vec::new(), Vec::new(), Vec::new());
+    let mut a_payload = None;
+    let (rotates, _) = forward(robot, joints, arena, motion, &mut |arena, idx, m| {
+        let i = idx + 1;
+        let link = &robot.links[idx];
+        let r_jc = m.r_jo.add(&vec_of(&link.com));
         a_c.push(name_vec(
             arena,
-            aj.add(&u.mul_vec(&r_jc)),
+            m.aj.add(&m.u.mul_vec(&r_jc)),
             &format!("ac{i}"),
         ));
-        if i < n {
-            ae_prev = name_vec(arena, aj.add(&u.mul_vec(&r_jo)), &format!("ae{i}"));
-        } else if let Some(l) = &robot.payload {
-            let r_jl = r_jo.add(&vec_of(&l.com));
-            a_payload = Some(name_vec(arena, aj.add(&u.mul_vec(&r_jl)), "acL"));
+        // (a_e,i for i < n is named by `forward` right after this.)
+        if i == n {
+            if let Some(l) = &robot.payload {
+                let r_jl = m.r_jo.add(&vec_of(&l.com));
+                a_payload = Some(name_vec(arena, m.aj.add(&m.u.mul_vec(&r_jl)), "acL"));
+            }
         }
-        w_prev = w.clone();
-        wd_prev = wd.clone();
-        u_prev = u;
-        omega.push(w);
-        alpha.push(wd);
-    }
+        omega.push(m.w.clone());
+        alpha.push(m.wd.clone());
+    });
 
     // Backward: f, n, τ.
     let mut tau = vec![Poly::zero(); n];

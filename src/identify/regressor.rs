@@ -24,9 +24,9 @@ use super::standard::{inertia_entry, scene_values, standard_params, Quantity, St
 use crate::algebra::compact::identity::{prove, Outcome, ProofOptions};
 use crate::algebra::compact::Compact;
 use crate::algebra::{Expr, Poly, Symbol};
-use crate::dynamics::compact::{arena_for, name_mat, name_vec, skew};
+use crate::dynamics::compact::{arena_for, name_vec};
 use crate::dynamics::kinematics::{joint_frame, JointFrame};
-use crate::dynamics::ne_compact::{tau_into, Motion};
+use crate::dynamics::ne_compact::{self, tau_into, Motion};
 use crate::dynamics::vec3::{Mat3, Vec3};
 use crate::dynamics::{JointKind, Robot};
 
@@ -187,12 +187,6 @@ fn used_symbols(robot: &Robot) -> Vec<Symbol> {
     exprs.into_iter().flat_map(|e| e.symbols()).collect()
 }
 
-fn mat_add(a: &Mat3<Poly>, b: &Mat3<Poly>) -> Mat3<Poly> {
-    Mat3(std::array::from_fn(|r| {
-        std::array::from_fn(|c| a.0[r][c].add(&b.0[r][c]))
-    }))
-}
-
 /// The kinematic quantities of link `i` that the wrenches need, in frame `i`.
 struct LinkMotion {
     w: Vec3<Poly>,
@@ -202,55 +196,29 @@ struct LinkMotion {
     a: Vec3<Poly>,
 }
 
-/// The forward pass: ω, α, U and the origin's acceleration of every link (as in `tau_into`, with the
-/// same names, so the arena shares them).
+/// The forward pass: ω, α, U and the origin's acceleration of every link, by the compact
+/// Newton–Euler's own forward recursion ([`ne_compact::forward`], the same names, so the arena
+/// shares them with `τ`).
 fn forward(robot: &Robot, joints: &[JointFrame], arena: &mut Compact) -> Vec<LinkMotion> {
-    let two = Poly::int(2);
-    let (mut w_prev, mut wd_prev) = (Vec3::<Poly>::zero(), Vec3::<Poly>::zero());
-    let mut ae_prev = Vec3(std::array::from_fn(|k| {
-        crate::algebra::to_poly(&robot.gravity[k]).neg()
-    }));
-    let mut u_prev = Mat3::<Poly>::zero();
-    let mut out = Vec::with_capacity(joints.len());
-    for (idx, jf) in joints.iter().enumerate() {
-        let i = idx + 1;
-        let rt = jf.rot.transpose();
-        let qd = jf.rate.mul(&Poly::symbol(&Symbol::qd(i as u32)));
-        let qdd = jf.rate.mul(&Poly::symbol(&Symbol::qdd(i as u32)));
-        let w0 = rt.mul_vec(&w_prev);
-        let wd0 = rt.mul_vec(&wd_prev);
-        let (w, wd) = if jf.kind == JointKind::Revolute {
-            let w = name_vec(arena, w0.add(&jf.axis_local.scale(&qd)), &format!("w{i}"));
-            let wd = wd0
-                .add(&jf.axis_local.scale(&qdd))
-                .add(&w.cross(&jf.axis_local.scale(&qd)));
-            (w, name_vec(arena, wd, &format!("wd{i}")))
-        } else {
-            (
-                name_vec(arena, w0, &format!("w{i}")),
-                name_vec(arena, wd0, &format!("wd{i}")),
-            )
-        };
-        let mut aj = if jf.joint_point.is_exact_zero() {
-            rt.mul_vec(&ae_prev)
-        } else {
-            rt.mul_vec(&ae_prev.add(&u_prev.mul_vec(&jf.joint_point)))
-        };
-        if jf.kind != JointKind::Revolute {
-            aj = aj
-                .add(&w.cross(&jf.axis_local.scale(&qd)).scale(&two))
-                .add(&jf.axis_local.scale(&qdd));
-        }
-        let aj = name_vec(arena, aj, &format!("aj{i}"));
-        let s2 = skew(&w);
-        let u = name_mat(arena, mat_add(&skew(&wd), &s2.mul(&s2)), &format!("U{i}"));
-        let r_jo = rt.mul_vec(&jf.origin.sub(&jf.joint_point));
-        let a = name_vec(arena, aj.add(&u.mul_vec(&r_jo)), &format!("ae{i}"));
-        w_prev = w.clone();
-        wd_prev = wd.clone();
-        u_prev = u.clone();
-        ae_prev = a.clone();
-        out.push(LinkMotion { w, wd, u, a });
+    let n = joints.len();
+    let mut out = Vec::with_capacity(n);
+    let (_, origins) =
+        ne_compact::forward(robot, joints, arena, Motion::Full, &mut |arena, idx, m| {
+            // a_e,i is named by the recursion right after this for i < n; the last link's here.
+            let a = if idx + 1 == n {
+                name_vec(arena, m.origin_accel(), &format!("ae{n}"))
+            } else {
+                Vec3::zero()
+            };
+            out.push(LinkMotion {
+                w: m.w.clone(),
+                wd: m.wd.clone(),
+                u: m.u.clone(),
+                a,
+            });
+        });
+    for (m, a) in out.iter_mut().zip(origins) {
+        m.a = a;
     }
     out
 }
