@@ -59,6 +59,21 @@ fn is_constant(p: &Poly) -> bool {
 /// A link's inertia tensor in its own frame and the columns of `R_iᵀ J_ω,i`.
 type LinkInertia = (Mat3<Poly>, Vec<Vec3<Poly>>);
 
+/// The columns of `R_iᵀ J_ω,i` (link `i`, 0-based): the joint axes seen from link `i`.
+fn local_axes(kin: &Kinematics, i: usize) -> Vec<Vec3<Poly>> {
+    let r = &kin.rot0[i + 1];
+    kin.jw[i]
+        .iter()
+        .map(|w| {
+            if w.is_exact_zero() {
+                Vec3::zero()
+            } else {
+                r.tr_mul_vec(w)
+            }
+        })
+        .collect()
+}
+
 fn quad(u: &Vec3<Poly>, m: &Mat3<Poly>, v: &Vec3<Poly>) -> Poly {
     u.dot(&m.mul_vec(v))
 }
@@ -80,18 +95,7 @@ impl Lagrange {
                 let local = Mat3(std::array::from_fn(|r| {
                     std::array::from_fn(|c| to_poly(&tensor[r][c]))
                 }));
-                let r = &kin.rot0[i + 1];
-                let axes = kin.jw[i]
-                    .iter()
-                    .map(|w| {
-                        if w.is_exact_zero() {
-                            Vec3::zero()
-                        } else {
-                            r.tr_mul_vec(w)
-                        }
-                    })
-                    .collect();
-                Some((local, axes))
+                Some((local, local_axes(kin, i)))
             })
             .collect();
         let masses: Vec<Poly> = robot.links.iter().map(|l| to_poly(&l.mass)).collect();
@@ -107,20 +111,7 @@ impl Lagrange {
                     }));
                     let axes = rotational[n - 1]
                         .as_ref()
-                        .map(|(_, axes)| axes.clone())
-                        .unwrap_or_else(|| {
-                            let r = &kin.rot0[n];
-                            kin.jw[n - 1]
-                                .iter()
-                                .map(|w| {
-                                    if w.is_exact_zero() {
-                                        Vec3::zero()
-                                    } else {
-                                        r.tr_mul_vec(w)
-                                    }
-                                })
-                                .collect()
-                        });
+                        .map_or_else(|| local_axes(kin, n - 1), |(_, axes)| axes.clone());
                     (local, axes)
                 });
                 (to_poly(&l.mass), jv, rot)
