@@ -8,7 +8,7 @@
 //! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
 //! `^`, `_`) nothing. Subscripts count as full characters, so the estimate errs on the wide side.
 
-use crate::algebra::tidy::{tidy_by, Grouping, Tidy};
+use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Kind, Symbol};
 use crate::print::equation::{Body, Shown};
 use crate::print::{self, Style};
@@ -108,8 +108,8 @@ impl Layout {
     }
 
     /// `lhs = e` as display math, `e` shown in the house style (`tidy_by`), broken if too long.
-    pub fn equation(&mut self, lhs: &str, e: &Expr, grouping: Grouping) -> String {
-        let shown = tidy_by(e, grouping);
+    pub fn equation<T: Tidy>(&mut self, lhs: &str, e: &T, grouping: Grouping) -> String {
+        let shown = e.tidy_by(grouping);
         self.terms(Some(lhs), &[shown], None)
     }
 

@@ -10,7 +10,7 @@ pub use compact::{
 };
 pub use json::json;
 
-use crate::algebra::tidy::equation_terms;
+use crate::algebra::tidy::equation_terms_poly;
 use crate::algebra::{Expr, Poly, Symbol};
 use crate::dynamics::check::Claim;
 use crate::dynamics::{Derivation, Frame};
@@ -36,7 +36,7 @@ pub fn tau(der: &Derivation, method: Method) -> &[Poly] {
 
 /// The display terms of equation `k`'s left side, in house order.
 pub fn lhs_terms(tau_k: &Poly) -> Vec<Expr> {
-    equation_terms(&tau_k.to_expr())
+    equation_terms_poly(tau_k)
 }
 
 /// The number of terms beyond which an expression is printed straight from its normal form (grouped
@@ -77,7 +77,10 @@ pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
     if p.len() > budget {
         return print::poly::poly_to_string(p, style);
     }
-    print::to_string(&crate::algebra::tidy::tidy(&p.to_expr()), style)
+    print::to_string(
+        &crate::algebra::tidy::tidy_poly_by(p, crate::algebra::tidy::Grouping::Trig),
+        style,
+    )
 }
 
 /// The equations of motion, one per line: `(m1+m2+m3) q̈1 + (m1+m2+m3) g = u1`. In LaTeX, an

@@ -13,7 +13,7 @@
 use crate::algebra::atom::AtomId;
 use crate::algebra::compact::Compact;
 use crate::algebra::fast_hash::FxHashMap;
-use crate::algebra::tidy::{tidy_by, Grouping};
+use crate::algebra::tidy::{tidy_poly_by, Grouping};
 use crate::algebra::{Expr, Poly, Rational, Symbol};
 use crate::print::layout::{width, Layout, LINE_WIDTH};
 use crate::print::{self, Style};
@@ -251,7 +251,7 @@ impl<'a> Names<'a> {
             })
             .count();
         if trig_terms >= 2 && poly.len() <= TIDY_TERMS {
-            tidy_by(&poly.to_expr(), Grouping::Trig)
+            tidy_poly_by(&poly, Grouping::Trig)
         } else {
             poly.to_expr()
         }

@@ -77,11 +77,7 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, scope: Scope) -> Strin
         );
         for (i, j, k, c) in el.nonzero_christoffel() {
             if i <= j {
-                out.push_str(&lay.equation(
-                    &format!("c_{{{i}{j}{k}}}"),
-                    &c.to_expr(),
-                    Grouping::Leading,
-                ));
+                out.push_str(&lay.equation(&format!("c_{{{i}{j}{k}}}"), c, Grouping::Leading));
             }
         }
     }
@@ -111,7 +107,7 @@ fn mass_matrix(der: &Derivation, lay: &mut Layout) -> String {
 fn gravity(der: &Derivation, lay: &mut Layout) -> String {
     let el = der.lagrange();
     let mut out = String::from("The potential energy of the manipulator is\n");
-    out.push_str(&lay.equation("P", &el.p.to_expr(), Grouping::Trig));
+    out.push_str(&lay.equation("P", &el.p, Grouping::Trig));
     out.push_str("Hence $g_k(q) = \\partial P / \\partial q_k$:\n");
     let component = |k: usize| format!("g_{{{}}}", k + 1);
     out.push_str(&lay.vector("g(q)", &el.g, &component, Grouping::Trig));

@@ -24,8 +24,18 @@ use crate::algebra::normal::normal_form;
 ///
 /// `m1 q̈1 + m2 q̈1 + m3 q̈1 + m1 g + m2 g + m3 g` gives `[(m1 + m2 + m3) q̈1, (m1 + m2 + m3) g]`.
 pub fn equation_terms(lhs: &Expr) -> Vec<Expr> {
+    terms_of_normal(normal_form(lhs))
+}
+
+/// [`equation_terms`] of a polynomial (its own normal form: no conversion from an expression).
+pub fn equation_terms_poly(lhs: &crate::algebra::Poly) -> Vec<Expr> {
+    terms_of_normal(lhs.to_expr())
+}
+
+/// [`equation_terms`] of an expression in normal form.
+fn terms_of_normal(lhs: Expr) -> Vec<Expr> {
     let mut out = Vec::new();
-    let mut rest = normal_form(lhs);
+    let mut rest = lhs;
     for keys in [KeyClass::Acceleration, KeyClass::Velocity] {
         let mut left = Expr::zero();
         for (key, coeff) in collect(&rest, keys) {
@@ -75,6 +85,16 @@ mod tests {
         let got = equation_terms(&input);
         assert_eq!(got, expected, "equation_terms({input:?})");
         assert!(equal(&input, &Expr::sum(got)), "value changed");
+    }
+
+    #[test]
+    fn a_polynomial_gives_the_terms_of_its_expression() {
+        let e = crate::parse::parse_expr(
+            "m1*qdd1 + m2*qdd1 + m2*l1*cos(q2)*qdd2 - 2*m2*l1*sin(q2)*qd1*qd2 + m1*g*cos(q1) + m2*g*cos(q1)",
+        )
+        .unwrap();
+        let p = crate::algebra::to_poly(&e);
+        assert_eq!(equation_terms_poly(&p), equation_terms(&e));
     }
 
     #[test]

@@ -47,7 +47,7 @@ mod proptests;
 
 pub use collect::{collect, collect_with, KeyClass};
 pub use contract::contract_trig;
-pub use equation::equation_terms;
+pub use equation::{equation_terms, equation_terms_poly};
 pub use factor::{factor_common, factor_list};
 pub use group::{group, Grouping};
 
