@@ -480,3 +480,26 @@ fn bad_payload_lines_are_refused_at_their_place() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn an_impossible_payload_inertia_is_warned_about_at_its_line() {
+    // Principal moments 1, 1, 5 break the triangle inequality (1 + 1 < 5): no body has them.
+    let text = scene("elbow_payload").replacen("inertia=diag(0,0,IL)", "inertia=diag(1,1,5)", 1);
+    assert_ne!(text, scene("elbow_payload"));
+    let parsed = parse_scene(&text).unwrap();
+    let line = 1 + text.lines().position(|l| l.starts_with("payload")).unwrap();
+    let w: Vec<String> = parsed
+        .warnings
+        .iter()
+        .map(|w| w.render("x.scene"))
+        .collect();
+    assert!(
+        w.iter().any(|w| w.contains(
+            "the inertia of the payload has principal moments that break the triangle inequality"
+        ) && w.contains(&format!("x.scene:{line}:"))),
+        "{w:?}"
+    );
+    // A possible one draws no warning.
+    let fine = scene("elbow_payload").replacen("inertia=diag(0,0,IL)", "inertia=diag(1,2,3)", 1);
+    assert!(parse_scene(&fine).unwrap().warnings.is_empty());
+}

@@ -78,6 +78,12 @@ pub enum Warning {
     },
     /// Every link's mass is 0 and no link has an inertia: the equations of motion are `0 = τ`.
     Massless,
+    /// The payload's inertia is one no body has (the rules of [`Warning::InertiaNotPositive`] and
+    /// [`Warning::InertiaTriangle`]).
+    PayloadInertia {
+        /// What is wrong with it, in words, after "the inertia of the payload".
+        what: String,
+    },
 }
 
 impl fmt::Display for Warning {
@@ -99,6 +105,7 @@ impl fmt::Display for Warning {
                 f,
                 "the principal moments of inertia of link {link} break the triangle inequality ({witness}; each must be at most the sum of the other two), so no body has them: check the values"
             ),
+            Warning::PayloadInertia { what } => write!(f, "the inertia of the payload {what}"),
             Warning::Massless => write!(
                 f,
                 "every link's mass is 0 and no link has an inertia, so the equations of motion say 0 = τ: give the links their masses (mass=m1, ...)"

@@ -12,7 +12,8 @@
 //! - its principal moments obey the triangle inequality (`diag(1, 1, 5)` does not: 1 + 1 < 5): that
 //!   is, `Σ = (tr I / 2) E − I`, the second moment of the mass, is positive semi-definite, checked
 //!   the same way;
-//! - a robot whose every mass is 0 and which has no inertia has the equations `0 = τ`.
+//! - a robot whose every mass is 0 and which has no inertia has the equations `0 = τ`;
+//! - a payload's inertia follows the links' rules (`payload mass=1 inertia=diag(1, 1, 5)`).
 //!
 //! A negative mass is no warning but an error ([`check_mass`](super::model::check_mass)).
 
@@ -42,6 +43,18 @@ impl Robot {
                 }
                 out.extend(inertia_warning(i + 1, t));
             }
+        }
+        if let Some(t) = self.payload.as_ref().and_then(|l| l.inertia.as_ref()) {
+            let what = match inertia_warning(0, t) {
+                Some(Warning::InertiaNotPositive { witness, .. }) => Some(format!(
+                    "is not positive semi-definite ({witness}), so no body has it: check the signs (a product of inertia is I_xy = -∫ x y dm)"
+                )),
+                Some(Warning::InertiaTriangle { witness, .. }) => Some(format!(
+                    "has principal moments that break the triangle inequality ({witness}; each must be at most the sum of the other two), so no body has them: check the values"
+                )),
+                _ => None,
+            };
+            out.extend(what.map(|what| Warning::PayloadInertia { what }));
         }
         let zero = |e: &Expr| e.is_zero();
         if self.links.iter().chain(&self.payload).all(|l| {

@@ -900,6 +900,7 @@ impl Builder {
         let joint_spans: Vec<[Range<usize>; 4]> =
             self.joints.iter().map(|j| j.fields.clone()).collect();
         let first_joint = self.joints[0].head.clone();
+        let payload_head = self.payload_head.clone();
         let mut joints = self.joints;
         for d in self.drives {
             let Some(joint) = joints.get_mut(d.index - 1) else {
@@ -967,6 +968,7 @@ impl Builder {
                         joint_spans[joint - 1][f as usize].clone()
                     }
                     Warning::Massless => link_spans[0].0.clone(),
+                    Warning::PayloadInertia { .. } => payload_head.clone(),
                 };
                 SceneWarning::new(w.to_string(), source, span)
             })

@@ -327,7 +327,7 @@ pub(super) fn robot(
             | Warning::InertiaNotPositive { link, .. }
             | Warning::InertiaTriangle { link, .. } => link_spans[link - 1].clone(),
             Warning::AngleInDegrees { joint, .. } => joint_spans[joint - 1].clone(),
-            Warning::Massless => robot_span.clone(),
+            Warning::Massless | Warning::PayloadInertia { .. } => robot_span.clone(),
         };
         warnings.push(SceneWarning::new(w.to_string(), source, span));
     }
