@@ -184,6 +184,14 @@ fn quick_bench_writes_consistent_results() {
             assert!(r[5].parse::<u64>().unwrap() >= 3, "{r:?}");
         }
     }
+    // Identification: `regressor --base` on each example and on random 7-joint chains.
+    for robot in ["ppp", "rpp", "random-7S0", "random-7M0"] {
+        let r = rows
+            .iter()
+            .find(|r| r[0] == robot && r[2] == "e2e-regressor-base")
+            .unwrap_or_else(|| panic!("no regressor row for {robot}"));
+        assert_eq!(r[3], "ok", "{r:?}");
+    }
     // check-body says how each claim was proved: the small robots exactly.
     assert!(row(&rows, "ppp", "check-body")[11].contains("(exact)"));
     let md = std::fs::read_to_string(out.join("benchmarks.md")).unwrap();
@@ -194,6 +202,8 @@ fn quick_bench_writes_consistent_results() {
         "| chain-2 | 2 |",
         "| ppp | 3 |",
         "derive ÷ EL",
+        "## Identification",
+        "| random-7M0 | 7 |",
     ] {
         assert!(md.contains(needle), "{needle}\n{md}");
     }

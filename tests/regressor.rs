@@ -228,36 +228,9 @@ fn every_example_is_proved_and_the_f64_rank_agrees() {
     }
 }
 
-/// A random chain's scene with its angles made multiples of π/2: symbolic twists and joint offsets
-/// become ±90°, and π/3 (whose sine is the surd √3, which has no exact rational values at random
-/// points) becomes π/2. Lengths, offsets and inertial data stay as generated (symbols and rationals).
+/// A random chain's scene with its angles made multiples of π/2 ([`symdyn::chains::right_angled`]).
 fn right_angled(scene: &str) -> String {
-    scene
-        .lines()
-        .map(|line| {
-            line.split(' ')
-                .map(|tok| {
-                    let tok = tok.replace("pi/3", "pi/2");
-                    match tok.split_once('=') {
-                        Some(("alpha", v)) if !matches!(v, "0" | "90deg" | "-90deg" | "pi/2") => {
-                            "alpha=-90deg".to_string()
-                        }
-                        Some(("theta", v))
-                            if !v.contains('q')
-                                && v.parse::<f64>().is_err()
-                                && !v.ends_with("deg")
-                                && !v.contains("pi") =>
-                        {
-                            "theta=90deg".to_string()
-                        }
-                        _ => tok,
-                    }
-                })
-                .collect::<Vec<_>>()
-                .join(" ")
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+    symdyn::chains::right_angled(scene)
 }
 
 /// Random chains of 1–6 joints in both conventions, two seeds each: Y π = τ proved on the chains as

@@ -317,6 +317,22 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         }
     }
 
+    let id_robots = robots_in(records, &["e2e-regressor-base"]);
+    if !id_robots.is_empty() {
+        s.push_str("\n## Identification\n\nMedian wall time of whole `symdyn regressor --base` processes: the ");
+        s.push_str("regressor, the base parameters with their expressions, the proofs of the dependencies and of ");
+        s.push_str("`Y_β β = τ`, and the special-value report (targets: the all-symbolic PUMA 560 under 200 ms, ");
+        s.push_str("every example and random 7-joint chains under 2 s). `random-7S3` is the chain of seed 3 in standard ");
+        s.push_str("DH (`M`: modified), its angles made right angles (`symdyn::chains::right_angled`).\n\n");
+        s.push_str("| robot | n | regressor --base |\n| --- | --- | --- |\n");
+        for (robot, n) in id_robots {
+            s.push_str(&format!(
+                "| {robot} | {n} | {} |\n",
+                cell(find(records, &robot, "e2e-regressor-base"))
+            ));
+        }
+    }
+
     let peer_robots = robots_in(records, &PEERS);
     if !peer_robots.is_empty() {
         s.push_str("\n## Peers\n\nThe plain Euler–Lagrange derivation (transforms, Jacobians, D, Christoffel symbols, g) ");

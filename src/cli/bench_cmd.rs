@@ -21,6 +21,7 @@ use symdyn::bench::peer::{parse_peer_answer, robot_json};
 use symdyn::bench::record::{to_csv, Record, Status};
 use symdyn::bench::report::{accuracy_csv, accuracy_markdown, markdown, Machine};
 use symdyn::bench::{measure, Method, RobotSpec};
+use symdyn::dynamics::Convention;
 use symdyn::numeric::accuracy::AccuracyPoint;
 
 /// The options of `symdyn bench`.
@@ -807,8 +808,39 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         ] {
             records.push(runner.end_to_end((name, dof), method, &cmd, runs, budget));
         }
+        records.push(runner.end_to_end(
+            (name, dof),
+            "e2e-regressor-base",
+            &["regressor", "--base", path.as_str()],
+            runs,
+            budget,
+        ));
         if !args.quick {
             records.push(sheet_pages(&runner.exe, name, dof, &out));
+        }
+    }
+    // Identification on random 7-joint chains (issue 10's target: under 2 s each), their angles made
+    // right angles so that every coefficient is an expression and every claim is proved.
+    let seeds = if args.quick { 0..1 } else { 0..6 };
+    for seed in seeds {
+        for convention in [Convention::Standard, Convention::Modified] {
+            let tag = match convention {
+                Convention::Modified => "M",
+                _ => "S",
+            };
+            let name = format!("random-7{tag}{seed}");
+            let scene = out.join(format!("{name}.scene"));
+            let text =
+                symdyn::chains::right_angled(&symdyn::chains::random_scene(7, convention, seed));
+            write(&scene, text.as_bytes())?;
+            let scene_s = scene.display().to_string();
+            records.push(runner.end_to_end(
+                (&name, 7),
+                "e2e-regressor-base",
+                &["regressor", "--base", &scene_s],
+                runs.min(5),
+                budget,
+            ));
         }
     }
     if args.peers {
