@@ -200,6 +200,11 @@ fn a_payload_equals_the_last_link_merged_with_it_exactly() {
             "payload mass=2 com=[0, 1/10, -3/10] inertia=diag(1/100, 1/50, 1/80)",
         ),
         ("stanford", "payload mass=1/2 com=[1/5, 0, 1/10]"),
+        // Modified DH: frame n is the last joint's own frame.
+        (
+            "panda_dh",
+            "payload mass=3/4 com=[1/50, 0, 1/10] inertia=diag(1/200, 1/300, 1/400)",
+        ),
     ] {
         let text = scene(name);
         // Numeric values for every symbol of the scene, so the merge is exact arithmetic.
