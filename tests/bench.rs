@@ -8,12 +8,8 @@ use symdyn::bench::record::CSV_HEADER;
 use symdyn::bench::RobotSpec;
 use symdyn::dynamics::Robot;
 
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .args(args)
-        .output()
-        .expect("symdyn runs")
-}
+mod common;
+use common::symdyn;
 
 /// A robot with the inputs renamed to the defaults and point masses as `None`, as `ROBOT.json`
 /// carries them.

@@ -7,6 +7,7 @@
 //! and the planar elbow are reviewed snapshots; bad input is refused with nothing written.
 
 mod common;
+use common::symdyn;
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
@@ -568,13 +569,6 @@ fn generated_code_of_ppp_and_elbow() {
             assert_snap!(format!("{name}_{ext}"), text);
         }
     }
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -6,11 +6,13 @@
 #![allow(clippy::needless_range_loop)] // joint indices, as the book writes them
 
 use std::collections::HashMap;
-use std::process::Command;
 use symdyn::algebra::{to_poly, Poly, Symbol};
 use symdyn::dynamics::numeric::inverse_dynamics;
 use symdyn::dynamics::{Derivation, Frame};
 use symdyn::parse::{parse_expr, parse_scene};
+
+mod common;
+use common::symdyn;
 
 fn scene(name: &str) -> String {
     std::fs::read_to_string(format!(
@@ -134,14 +136,6 @@ fn the_compact_form_and_the_numeric_newton_euler_carry_the_drives() {
             num[k]
         );
     }
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -12,7 +12,6 @@
 //! `cargo test --release --test failure_modes -- --ignored --nocapture`.
 
 use std::collections::HashMap;
-use std::process::Command;
 use symdyn::algebra::{Poly, Rational, Symbol};
 use symdyn::chains::chain;
 use symdyn::dynamics::{Derivation, Frame};
@@ -23,6 +22,9 @@ use symdyn::numeric::accuracy::{self, max_rel_error, steps};
 use symdyn::numeric::fd::FdLagrangian;
 use symdyn::numeric::{compile, Dynamics, NumericError};
 use symdyn::parse::parse_scene;
+
+mod common;
+use common::symdyn;
 
 // ---------------------------------------------------------------------------------------------
 // 1. Finite differences
@@ -310,13 +312,6 @@ fn singular_and_nearly_singular_mass_matrices_are_refused_naming_the_condition_n
         }
         other => panic!("tiny tip mass: {other:?}"),
     }
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

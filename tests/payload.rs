@@ -8,12 +8,14 @@
 #![allow(clippy::needless_range_loop)] // joint indices, as the book writes them
 
 use std::collections::{BTreeMap, HashMap};
-use std::process::Command;
 use symdyn::algebra::{to_poly, Expr, Poly, Rational, Symbol};
 use symdyn::dynamics::numeric::inverse_dynamics;
 use symdyn::dynamics::placement::from_dh;
 use symdyn::dynamics::{Derivation, Frame, Link, Robot};
 use symdyn::parse::{parse_expr, parse_scene};
+
+mod common;
+use common::symdyn;
 
 fn scene(name: &str) -> String {
     std::fs::read_to_string(format!(
@@ -376,14 +378,6 @@ fn the_regressor_counts_the_payload_with_the_last_link() {
         .all(|o| matches!(o, Outcome::Equal(_))));
     let m2 = reg.params.iter().position(|q| q.name() == "M2").unwrap();
     assert!(zero(&reg.pi[m2].sub(&p("m2 + mL"))), "M2 = m2 + mL");
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -7,6 +7,7 @@
 //! introduced once, and their sheets stay within the page limits of issue 12.
 
 mod common;
+use common::symdyn;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -168,13 +169,6 @@ fn every_example_sheet_compiles_on_the_page() {
         "text off the page:\n{}",
         problems.join("\n")
     );
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .args(args)
-        .output()
-        .expect("run symdyn")
 }
 
 #[test]

@@ -4,11 +4,13 @@
 //! (a payload against the URDF's own fixed link carrying it, merged by the URDF reader), and bad side
 //! files refused at their place.
 
-use std::process::Command;
 use symdyn::algebra::{to_poly, Poly};
 use symdyn::dynamics::{Derivation, Robot};
 use symdyn::parse::urdf::UrdfOptions;
 use symdyn::parse::{parse_expr, parse_extras, parse_robot, parse_scene};
+
+mod common;
+use common::symdyn;
 
 fn example(file: &str) -> String {
     std::fs::read_to_string(format!("{}/examples/{file}", env!("CARGO_MANIFEST_DIR"))).unwrap()
@@ -107,14 +109,6 @@ fn a_drive_line_equals_the_drive_fields_on_the_joint_line() {
         &tau(with_extras(&elbow, lines)),
         "drive lines in a side file",
     );
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -3,11 +3,13 @@
 //! drifts), and bad input refused with a clear message and a non-zero exit.
 
 use std::collections::{BTreeMap, HashMap};
-use std::process::Command;
 use symdyn::algebra::{Expr, Rational, Symbol};
 use symdyn::dynamics::numeric::inverse_dynamics;
 use symdyn::parse::{parse_expr, parse_scene};
 use symdyn::simulate::{simulate, Integrator, Options, SimError, System};
+
+mod common;
+use common::symdyn;
 
 fn robot(name: &str) -> symdyn::dynamics::Robot {
     let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
@@ -232,14 +234,6 @@ fn a_singular_inertia_matrix_is_refused() {
     )
     .unwrap_err();
     assert!(matches!(e, SimError::Singular { .. }), "{e}");
-}
-
-fn symdyn(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -1,4 +1,5 @@
-//! The one shared helper of the integration tests: insta snapshots in the crate's `snapshots/`.
+//! The shared helpers of the integration tests: insta snapshots in the crate's `snapshots/`, and
+//! [`symdyn`], the command line as a user runs it.
 //!
 //! Every integration test file declares `mod common;` and asserts snapshots with
 //! [`assert_snap!`](crate::assert_snap), never with `insta::assert_snapshot!` directly, so that all
@@ -35,4 +36,15 @@ macro_rules! assert_snap {
         let name = format!("{}__{}", $crate::common::test_file(module_path!()), $name);
         $crate::common::settings().bind(|| insta::assert_snapshot!(name, $value));
     }};
+}
+
+/// Runs the `symdyn` binary with `args` from the crate's root (so `examples/…` paths resolve) and
+/// returns what it did.
+#[allow(dead_code)]
+pub fn symdyn(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .expect("symdyn runs")
 }
