@@ -199,6 +199,21 @@ fn bad_side_files_are_refused_at_their_place() {
             "{text}: the error names {place}: {err}"
         );
     }
+    // A payload inertia no body has is warned about at its line of the side file (1 + 1 < 5).
+    let path = dir.join("odd.extras");
+    std::fs::write(&path, "# a load\npayload mass=1 inertia=diag(1, 1, 5)").unwrap();
+    let o = symdyn(&[
+        "derive",
+        "examples/ur5.urdf",
+        "--extras",
+        path.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("odd.extras:2:1: warning: the inertia of the payload has principal moments that break the triangle inequality"),
+        "{err}"
+    );
     // A payload in the scene and in the side file; a drive on the joint line and on a drive line.
     let path = dir.join("twice.extras");
     std::fs::write(&path, "payload mass=1").unwrap();

@@ -103,9 +103,12 @@ pub(super) fn load_robot(path: Option<&str>) -> Result<(String, Robot), CliError
         })?;
         let render =
             |e: symdyn::parse::SceneError| CliError::Input(format!("error: {}", e.render(&path)));
-        symdyn::parse::parse_extras(&text)
+        let warnings = symdyn::parse::parse_extras(&text)
             .and_then(|extras| extras.apply(&mut robot))
             .map_err(render)?;
+        for w in &warnings {
+            super::output::stderr_line(&w.render(&path));
+        }
     }
     Ok((name, robot))
 }

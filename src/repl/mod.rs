@@ -105,10 +105,12 @@ impl Session {
     ) -> Result<String, ReplError> {
         let scene = parse_robot(text, opts).map_err(|e| ReplError::Parse(e.render(name)))?;
         let mut robot = scene.robot;
+        let mut side_warnings = Vec::new();
         if let Some((side, side_text)) = extras {
-            crate::parse::parse_extras(side_text)
+            let found = crate::parse::parse_extras(side_text)
                 .and_then(|x| x.apply(&mut robot))
                 .map_err(|e| ReplError::Parse(e.render(side)))?;
+            side_warnings.extend(found.iter().map(|w| w.render(side)));
         }
         let der = Derivation::new(robot).map_err(|e| ReplError::Math(format!("{name}: {e}")))?;
         let mut out = format!(
@@ -119,6 +121,10 @@ impl Session {
         for w in &scene.warnings {
             out.push('\n');
             out.push_str(&w.render(name));
+        }
+        for w in &side_warnings {
+            out.push('\n');
+            out.push_str(w);
         }
         self.der = der;
         Ok(out)

@@ -146,8 +146,9 @@ impl Extras {
     ///
     /// A drive for a joint the robot does not have, a payload or a drive the robot states already, a
     /// number of inputs other than its joints, or what [`Robot::validate`] refuses; located in the
-    /// side file.
-    pub fn apply(&self, robot: &mut Robot) -> Result<(), SceneError> {
+    /// side file. On success, the warnings about what the side file states (a payload's inertia that
+    /// no body has), located in it.
+    pub fn apply(&self, robot: &mut Robot) -> Result<Vec<SceneWarning>, SceneError> {
         let n = robot.dof();
         let error = |kind, span| Err(SceneError::new(kind, &self.source, span));
         if let Some(g) = &self.gravity {
@@ -198,7 +199,17 @@ impl Extras {
         if let Err(e) = robot.validate() {
             return error(SceneErrorKind::Model(e), 0..0);
         }
-        Ok(())
+        let head = self.payload.as_ref().map(|(_, h)| h.clone());
+        Ok(robot
+            .warnings()
+            .into_iter()
+            .filter_map(|w| match (&w, &head) {
+                (crate::dynamics::facts::Warning::PayloadInertia { .. }, Some(h)) => {
+                    Some(SceneWarning::new(w.to_string(), &self.source, h.clone()))
+                }
+                _ => None,
+            })
+            .collect())
     }
 }
 
