@@ -75,6 +75,20 @@ impl<S: Scalar> Mat3<S> {
         Mat3(std::array::from_fn(|_| std::array::from_fn(|_| S::zero())))
     }
 
+    /// `self + o`, entry by entry.
+    pub fn add(&self, o: &Self) -> Self {
+        Mat3(std::array::from_fn(|r| {
+            std::array::from_fn(|c| self.0[r][c].add(&o.0[r][c]))
+        }))
+    }
+
+    /// `s · self`.
+    pub fn scale(&self, s: &S) -> Self {
+        Mat3(std::array::from_fn(|r| {
+            std::array::from_fn(|c| self.0[r][c].mul(s))
+        }))
+    }
+
     /// The transpose.
     pub fn transpose(&self) -> Self {
         Mat3(std::array::from_fn(|i| {

@@ -28,15 +28,16 @@
 //! constants in `Y`, never random.
 
 use super::error::IdentifyError;
+use super::grouping;
 use super::linalg::{int_mod, reconstruct, solve_fast, EchelonMod, Fp, P};
 use super::regressor::{Gravity, Regressor, GRAVITY_INPUT};
 use super::standard::{Quantity, StandardParam};
 use crate::algebra::atom::{self, AtomId, Class};
-use crate::algebra::compact::atom_name;
 use crate::algebra::compact::degree::{is_angle, DegreeBounds, Var};
 use crate::algebra::compact::eval::{eval, Ring};
 use crate::algebra::compact::fraction::{NoValue, Plan};
 use crate::algebra::compact::identity::{prove, Outcome, ProofOptions};
+use crate::algebra::compact::{atom_name, Compact};
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::random::Rng;
 use crate::algebra::{Poly, Rational, Symbol};
@@ -420,15 +421,19 @@ fn attempt_once(
             .collect()
     };
     let coefficients: Result<Vec<Vec<Poly>>, String> = if !sampler.angles_in_geometry.is_empty() {
-        let names: Vec<String> = sampler
-            .angles_in_geometry
-            .iter()
-            .map(|&v| atom::symbol_of(v).map_or_else(|| atom_name(v), |s| s.ascii_name()))
-            .collect();
-        Err(format!(
-            "the grouping coefficients hold sines and cosines of the symbolic angle(s) {}: symdyn gives the count and the grouping, not their expressions",
-            names.join(", ")
-        ))
+        // Interpolation is out of reach: the rules of the joint axes give them symbolically.
+        let dep: Vec<usize> = dependent.iter().map(|&c| cols[c]).collect();
+        grouping::coefficients(reg, &pivots, &dep).map_err(|why| {
+            let names: Vec<String> = sampler
+                .angles_in_geometry
+                .iter()
+                .map(|&v| atom::symbol_of(v).map_or_else(|| atom_name(v), |s| s.ascii_name()))
+                .collect();
+            format!(
+                "the grouping coefficients hold sines and cosines of the symbolic angle(s) {}, and the grouping rules of the joint axes do not give them ({why}): symdyn gives the count and the grouping, not their expressions",
+                names.join(", ")
+            )
+        })
     } else if sampler.lengths.is_empty() {
         at(&echelon).map(|x| {
             x.into_iter()
@@ -453,11 +458,17 @@ fn attempt_once(
             })
             .collect(),
     };
-    // Which coefficients are non-zero (at the random point).
-    let numeric: Vec<Vec<bool>> = dependent
-        .iter()
-        .map(|&c| (0..rank).map(|r| echelon.rows[r][c] != 0).collect())
-        .collect();
+    // Which coefficients are non-zero: as expressions when known, else at the random point.
+    let numeric: Vec<Vec<bool>> = match &coefficients {
+        Ok(x) => x
+            .iter()
+            .map(|row| row.iter().map(|v| !v.is_zero()).collect())
+            .collect(),
+        Err(_) => dependent
+            .iter()
+            .map(|&c| (0..rank).map(|r| echelon.rows[r][c] != 0).collect())
+            .collect(),
+    };
     let mut base: Vec<BaseParam> = pivots
         .iter()
         .map(|&k| BaseParam {
@@ -496,17 +507,29 @@ fn attempt_once(
     // The proofs.
     let (dependency_proofs, tau_proofs) = match &coefficients {
         Ok(x) => {
+            // Long coefficients (a symbolic twist) are named, so that the randomized proof values
+            // each once per point, not once per row.
+            let mut local: Option<Compact> =
+                (!sampler.angles_in_geometry.is_empty()).then(|| reg.arena.clone());
+            let mut name = |p: Poly, hint: String| match local.as_mut() {
+                Some(a) if p.len() > 1 => a.name(p, &hint),
+                _ => p,
+            };
             let mut sides: Vec<(Poly, Poly)> = Vec::new();
             for (d, &c) in dependent.iter().enumerate() {
+                // Coefficients with a denominator (a symbolic twist): both sides times it.
+                let den = grouping::common_denominator(&x[d]);
+                let xd: Vec<Poly> = x[d]
+                    .iter()
+                    .enumerate()
+                    .map(|(r, v)| name(grouping::times(v, &den, 1), format!("x{}_{r}", cols[c])))
+                    .collect();
                 for row in &reg.y {
-                    let rhs = (0..rank).fold(Poly::zero(), |acc, r| {
-                        acc.add(&x[d][r].mul(&row[pivots[r]]))
-                    });
-                    sides.push((row[cols[c]].clone(), rhs));
+                    let rhs =
+                        (0..rank).fold(Poly::zero(), |acc, r| acc.add(&xd[r].mul(&row[pivots[r]])));
+                    sides.push((grouping::times(&row[cols[c]], &den, 1), rhs));
                 }
             }
-            let claims: Vec<(&Poly, &Poly)> = sides.iter().map(|(a, b)| (a, b)).collect();
-            let deps = prove(&reg.arena, &claims, proof);
             let partial = BaseParameters {
                 base: base.clone(),
                 eliminated: vec![],
@@ -517,6 +540,12 @@ fn attempt_once(
                 rows: 0,
             };
             let beta = partial.scene_values(reg).expect("every coefficient found");
+            let den = grouping::common_denominator(&beta);
+            let beta: Vec<Poly> = beta
+                .iter()
+                .enumerate()
+                .map(|(r, b)| name(grouping::times(b, &den, 1), format!("beta{r}")))
+                .collect();
             let yb = partial.base_regressor(reg);
             let lhs: Vec<Poly> = yb
                 .iter()
@@ -526,8 +555,16 @@ fn attempt_once(
                         .fold(Poly::zero(), |acc, (y, b)| acc.add(&y.mul(b)))
                 })
                 .collect();
-            let claims: Vec<(&Poly, &Poly)> = lhs.iter().zip(&reg.tau).collect();
-            (deps, prove(&reg.arena, &claims, proof))
+            let tau: Vec<Poly> = reg
+                .tau
+                .iter()
+                .map(|t| grouping::times(t, &den, 1))
+                .collect();
+            let arena = local.as_ref().unwrap_or(&reg.arena);
+            let claims: Vec<(&Poly, &Poly)> = sides.iter().map(|(a, b)| (a, b)).collect();
+            let deps = prove(arena, &claims, proof);
+            let claims: Vec<(&Poly, &Poly)> = lhs.iter().zip(&tau).collect();
+            (deps, prove(arena, &claims, proof))
         }
         Err(_) => (vec![], vec![]),
     };

@@ -7,6 +7,7 @@
 //! | the regressor in compact form, `Y π = τ` | [`regressor`] |
 //! | exact Gauss–Jordan over ℚ | [`linalg`] |
 //! | the base parameters, their grouping and proofs | [`base`] |
+//! | the grouping coefficients from the joint axes (symbolic twists) | `grouping` |
 //! | the regressor and base parameters as text and JSON | [`render`] |
 //! | the f64 rank check and least-squares fit | [`fit`] |
 //! | which special values of the geometry decide the count | [`special`] |
@@ -17,6 +18,7 @@
 pub mod base;
 pub mod error;
 pub mod fit;
+mod grouping;
 pub mod linalg;
 pub mod regressor;
 pub mod render;

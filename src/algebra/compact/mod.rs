@@ -375,6 +375,9 @@ pub struct Expander<'a> {
     budget: usize,
 }
 
+/// How many term products per term of the budget an expansion may multiply out.
+const WORK_PER_TERM: usize = 4;
+
 impl Expander<'_> {
     /// The expanded form of `p`, or the first name whose expansion goes over the budget.
     pub fn expand(&mut self, p: &Poly) -> Result<Poly, OverBudget> {
@@ -396,28 +399,54 @@ impl Expander<'_> {
         for k in need {
             let def = &self.arena.defs[k];
             let value = self.substitute(&def.value);
-            if value.len() > self.budget {
+            let Some(value) = value.filter(|v| v.len() <= self.budget) else {
                 let e = OverBudget {
                     name: def.symbol.ascii_name(),
                     budget: self.budget,
                 };
                 self.over.insert(k as u32, e.clone());
                 return Err(e);
-            }
+            };
             self.memo.insert(k as u32, value);
         }
         let out = self.substitute(p);
-        if out.len() > self.budget {
+        let Some(out) = out.filter(|o| o.len() <= self.budget) else {
             return Err(OverBudget {
                 name: "the result".into(),
                 budget: self.budget,
             });
-        }
+        };
         Ok(out)
     }
 
-    /// `p` with every name replaced by its (already expanded) value.
-    fn substitute(&self, p: &Poly) -> Poly {
+    /// Whether expanding `p` multiplies out at most [`WORK_PER_TERM`] times the budget in term
+    /// products: past that the expansion is not attempted (its result could still cancel to within
+    /// the budget, but finding out could take gigabytes).
+    fn fits(&self, p: &Poly) -> bool {
+        let cap = self.budget.saturating_mul(WORK_PER_TERM);
+        let mut work = 0usize;
+        for (m, _) in p.terms() {
+            let mut t = 1usize;
+            for &(id, e) in m.factors() {
+                if let Some(k) = self.arena.index_of(id).filter(|_| e > 0) {
+                    let len = self.memo[&(k as u32)].len().max(1);
+                    t = t.saturating_mul(len.saturating_pow(e as u32));
+                }
+            }
+            work = work.saturating_add(t);
+            if work > cap {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// `p` with every name replaced by its (already expanded) value; `None` when that is too much
+    /// work ([`Expander::fits`]).
+    fn substitute(&self, p: &Poly) -> Option<Poly> {
+        if !self.fits(p) {
+            return None;
+        }
         let mut parts = Vec::with_capacity(p.len());
         for (m, c) in p.terms() {
             let mut kept: Vec<(AtomId, i32)> = Vec::new();
@@ -434,7 +463,7 @@ impl Expander<'_> {
             }
             parts.push(prod);
         }
-        Poly::sum(parts.iter())
+        Some(Poly::sum(parts.iter()))
     }
 }
 

@@ -35,18 +35,6 @@ struct Composite {
     inertia: Mat3<Poly>,
 }
 
-fn mat_add(a: &Mat3<Poly>, b: &Mat3<Poly>) -> Mat3<Poly> {
-    Mat3(std::array::from_fn(|r| {
-        std::array::from_fn(|c| a.0[r][c].add(&b.0[r][c]))
-    }))
-}
-
-fn mat_scale(a: &Mat3<Poly>, s: &Poly) -> Mat3<Poly> {
-    Mat3(std::array::from_fn(|r| {
-        std::array::from_fn(|c| a.0[r][c].mul(s))
-    }))
-}
-
 /// The link's own mass, first moment and inertia about its frame's origin (the parallel-axis theorem),
 /// with the payload's added for the last link (about the origin they simply add: no division).
 fn own(robot: &Robot, i: usize) -> Composite {
@@ -56,7 +44,7 @@ fn own(robot: &Robot, i: usize) -> Composite {
         c = Composite {
             mass: c.mass.add(&p.mass),
             first: c.first.add(&p.first),
-            inertia: mat_add(&c.inertia, &p.inertia),
+            inertia: c.inertia.add(&p.inertia),
         };
     }
     c
@@ -68,14 +56,12 @@ fn body(link: &crate::dynamics::Link) -> Composite {
     let r = Vec3(std::array::from_fn(|k| to_poly(&link.com[k])));
     let s = skew(&r);
     // I + m (|r|² 1 − r rᵀ) = I − m S(r)².
-    let shift = mat_scale(&s.mul(&s), &m.neg());
+    let shift = s.mul(&s).scale(&m.neg());
     let inertia = match &link.inertia {
-        Some(t) => mat_add(
-            &Mat3(std::array::from_fn(|a| {
-                std::array::from_fn(|b| to_poly(&t[a][b]))
-            })),
-            &shift,
-        ),
+        Some(t) => Mat3(std::array::from_fn(|a| {
+            std::array::from_fn(|b| to_poly(&t[a][b]))
+        }))
+        .add(&shift),
         None => shift,
     };
     Composite {
@@ -100,11 +86,11 @@ pub fn mass_matrix(robot: &Robot, joints: &[JointFrame], arena: &mut Compact) ->
             let sp = skew(p);
             let sh = skew(&h);
             let j = rot.mul(&child.inertia).mul(&rot.transpose());
-            let shift = mat_add(
-                &mat_add(&sh.mul(&sp), &sp.mul(&sh)),
-                &mat_scale(&sp.mul(&sp), &child.mass),
-            );
-            c.inertia = mat_add(&c.inertia, &j);
+            let shift = sh
+                .mul(&sp)
+                .add(&sp.mul(&sh))
+                .add(&sp.mul(&sp).scale(&child.mass));
+            c.inertia = c.inertia.add(&j);
             c.inertia = Mat3(std::array::from_fn(|a| {
                 std::array::from_fn(|b| c.inertia.0[a][b].sub(&shift.0[a][b]))
             }));
