@@ -211,6 +211,24 @@ pub fn random_chain(n: usize, convention: Convention, seed: u64) -> Robot {
         .robot
 }
 
+/// The general nR arm in standard DH: every length `aj`, offset `dj` and twist `alj` a free symbol,
+/// gravity along `−z_0` (the "general 6R" of the identification literature for `n = 6`). Its base
+/// parameters' coefficients hold the twists' sines and cosines ([`crate::identify`]).
+pub fn general_scene(n: usize) -> String {
+    let mut s = format!("robot \"general {n}R\"\ngravity [0, 0, -g]\ndh standard\n");
+    for j in 1..=n {
+        s.push_str(&format!(
+            "joint {j} revolute a=a{j} alpha=al{j} d=d{j} theta=q{j}\n"
+        ));
+    }
+    for j in 1..=n {
+        s.push_str(&format!(
+            "link {j} mass=m{j} com=[x{j},y{j},z{j}] inertia=I{j}\n"
+        ));
+    }
+    s
+}
+
 /// A random chain's scene with its angles made multiples of π/2: symbolic twists and joint offsets
 /// become ±90°, and π/3 (whose sine is the surd √3, which has no exact rational values at random
 /// points) becomes π/2. Lengths, offsets and inertial data stay as generated (symbols and rationals).
@@ -248,6 +266,17 @@ pub fn right_angled(scene: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_general_arm_has_every_length_and_twist_free() {
+        let r = crate::parse::parse_scene(&general_scene(4)).unwrap().robot;
+        assert_eq!(r.dof(), 4);
+        for (k, j) in r.joints.iter().enumerate() {
+            assert_eq!(j.alpha.to_string(), format!("al{}", k + 1));
+            assert_eq!(j.a.to_string(), format!("a{}", k + 1));
+            assert_eq!(j.d.to_string(), format!("d{}", k + 1));
+        }
+    }
 
     #[test]
     fn chains_parse_with_the_stated_joint_kinds() {

@@ -323,7 +323,9 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("regressor, the base parameters with their expressions, the proofs of the dependencies and of ");
         s.push_str("`Y_β β = τ`, and the special-value report (targets: the all-symbolic PUMA 560 under 200 ms, ");
         s.push_str("every example and random 7-joint chains under 2 s). `random-7S3` is the chain of seed 3 in standard ");
-        s.push_str("DH (`M`: modified), its angles made right angles (`symdyn::chains::right_angled`).\n\n");
+        s.push_str("DH (`M`: modified), its angles made right angles (`symdyn::chains::right_angled`); `general-6R` ");
+        s.push_str("has every length and twist symbolic (`symdyn::chains::general_scene`), its coefficients from the ");
+        s.push_str("rules of the joint axes.\n\n");
         s.push_str("| robot | n | regressor --base |\n| --- | --- | --- |\n");
         for (robot, n) in id_robots {
             s.push_str(&format!(

@@ -843,6 +843,21 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             ));
         }
     }
+    // Symbolic twists: the general 3R and 6R, coefficients from the rules of the joint axes.
+    let general: &[usize] = if args.quick { &[3] } else { &[3, 6] };
+    for &n in general {
+        let name = format!("general-{n}R");
+        let scene = out.join(format!("{name}.scene"));
+        write(&scene, symdyn::chains::general_scene(n).as_bytes())?;
+        let scene_s = scene.display().to_string();
+        records.push(runner.end_to_end(
+            (&name, n),
+            "e2e-regressor-base",
+            &["regressor", "--base", &scene_s],
+            runs.min(3),
+            budget,
+        ));
+    }
     if args.peers {
         records.extend(run_peers(&args, limit, chains, &mut notes)?);
     }
