@@ -333,6 +333,8 @@ fn rule(reg: &Regressor, p: &StandardParam) -> String {
         return format!("rotor {j}: Ia{j} q̈{j} is a column that link inertias already give (its joint axis is fixed, or parallel to the earlier ones)");
     }
     match reg.model.joints[j - 1].kind {
+        JointKind::Revolute if j == 1 => "revolute joint 1: link 1 turns about a fixed axis, so it acts only through its inertia about that axis (and its first moment across the axis where gravity is not along it)".to_string(),
+        JointKind::Prismatic if j == 1 => "prismatic joint 1: link 1 slides along a fixed axis without turning, so it acts only through its mass".to_string(),
         JointKind::Revolute => format!(
             "revolute joint {j}: what of link {j} is invariant about the joint axis is grouped with the parameters before it (Khalil's grouping rule)"
         ),
