@@ -563,10 +563,15 @@ fn attempt_once(
                 .map(|t| grouping::times(t, &den, 1))
                 .collect();
             let arena = local.as_ref().unwrap_or(&reg.arena);
-            let claims: Vec<(&Poly, &Poly)> = sides.iter().map(|(a, b)| (a, b)).collect();
-            let deps = prove(arena, &claims, proof);
-            let claims: Vec<(&Poly, &Poly)> = lhs.iter().zip(&tau).collect();
-            (deps, prove(arena, &claims, proof))
+            // One batch, so both proofs share one expansion of the arena's names.
+            let claims: Vec<(&Poly, &Poly)> = sides
+                .iter()
+                .map(|(a, b)| (a, b))
+                .chain(lhs.iter().zip(&tau))
+                .collect();
+            let mut deps = prove(arena, &claims, proof);
+            let tau_proofs = deps.split_off(sides.len());
+            (deps, tau_proofs)
         }
         Err(_) => (vec![], vec![]),
     };
