@@ -389,9 +389,21 @@ fn random_chains_of_one_to_six_joints() {
 /// Samples of the numeric PUMA 560 (g = 9.81): τ from the scene's own compact Newton–Euler, plus
 /// seeded Gaussian-like noise of `noise` N·m.
 fn samples(reg: &Regressor, count: usize, still: bool, noise: f64) -> Vec<Sample> {
+    let g: HashMap<Symbol, f64> = [(Symbol::new("g"), 9.81)].into_iter().collect();
+    samples_at(reg, &g, count, still, noise)
+}
+
+/// [`samples`] with the symbols of the scene valued by `given`.
+fn samples_at(
+    reg: &Regressor,
+    given: &HashMap<Symbol, f64>,
+    count: usize,
+    still: bool,
+    noise: f64,
+) -> Vec<Sample> {
     let mut rng = Rng::new(42);
     let n = reg.dof();
-    let mut values: HashMap<Symbol, f64> = [(Symbol::new("g"), 9.81)].into_iter().collect();
+    let mut values = given.clone();
     (0..count)
         .map(|_| {
             let mut r = |s: f64| (0..n).map(|_| rng.range(-s, s)).collect::<Vec<f64>>();
@@ -447,6 +459,61 @@ fn least_squares_recovers_the_base_parameters_of_the_puma() {
     // Without noise the fit is exact to rounding.
     let exact = fit(&reg, &b, &samples(&reg, 100, false, 0.0), &values).unwrap();
     assert!(exact.residual < 1e-8, "{}", exact.residual);
+}
+
+/// Identification end to end with symbolic twists: τ sampled from the general 3R's own compact
+/// Newton–Euler at numeric values of every symbol (twists of 0.3–1.2 rad, nothing special), fitted
+/// by least squares: the estimate equals the scene's β computed from the grouping coefficients
+/// (which divide by the twists' sines and cosines) to rounding. Two independent routes to β.
+#[test]
+fn least_squares_recovers_the_general_3r_whose_twists_are_symbolic() {
+    let (reg, b) = base(&robot(GENERAL_3R), RegressorOptions::default());
+    check_proved(&reg, &b);
+    let mut rng = Rng::new(7);
+    let mut values: HashMap<Symbol, f64> = [(Symbol::new("g"), 9.81)].into_iter().collect();
+    let r = &reg.model;
+    let symbols: std::collections::BTreeSet<Symbol> = r
+        .joints
+        .iter()
+        .flat_map(|j| [&j.a, &j.alpha, &j.d, &j.theta])
+        .chain(r.links.iter().flat_map(|l| {
+            std::iter::once(&l.mass)
+                .chain(&l.com)
+                .chain(l.inertia.iter().flatten().flatten())
+        }))
+        .flat_map(|e| e.symbols())
+        .filter(|s| !s.is_coord())
+        .collect();
+    for s in symbols {
+        let name = s.ascii_name();
+        let v = if name.starts_with("al") {
+            rng.range(0.3, 1.2)
+        } else if name.starts_with('m') {
+            rng.range(1.0, 5.0)
+        } else if name.starts_with('I') && name.len() == 4 && name[2..3] == name[3..4] {
+            rng.range(0.1, 0.2)
+        } else {
+            rng.range(-0.5, 0.5)
+        };
+        values.entry(s).or_insert(v);
+    }
+    let f = fit(
+        &reg,
+        &b,
+        &samples_at(&reg, &values, 80, false, 0.0),
+        &values,
+    )
+    .unwrap();
+    let scene = f.scene.clone().expect("every symbol has a value");
+    for (i, truth) in scene.iter().enumerate() {
+        assert!(
+            (f.estimate[i] - truth).abs() <= 1e-8 * (1.0 + truth.abs()),
+            "{}: {} vs {}",
+            f.names[i],
+            f.estimate[i],
+            truth
+        );
+    }
 }
 
 #[test]
