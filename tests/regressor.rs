@@ -207,7 +207,8 @@ fn assert_same_function(b: &BaseParameters, reg: &Regressor, name: &str, want: &
 }
 
 /// Symbolic twists: the grouping coefficients from the rules of the joint axes, proved exactly on a
-/// general 3R, and the last link's base parameters against a derivation by hand.
+/// general 3R (and one whose first two axes are parallel), and base parameters against a derivation
+/// by hand.
 ///
 /// Standard DH, last link n: joint n turns about `z_{n−1}`, which in frame n is the axis
 /// `u = (0, sin α, cos α)` through `A = (−a, 0, 0)`. Three bodies of link n move the same fixed to
@@ -265,6 +266,20 @@ fn symbolic_twists_by_the_rules_of_the_joint_axes() {
     for k in ["ZZ3", "XY3", "XZ3", "YZ3", "MX3", "MY3"] {
         assert!(b.find(k).is_some(), "{k} stays as it is");
     }
+    // Axes 1 and 2 parallel (alpha1 = 0), the later twists symbolic: link 2 turns in a plane and
+    // acts only through its inertia about its axis, its first moment across it and its mass.
+    // Link 1 about z_0, frame 1 at a1 from the axis along x_1: the inertia about the axis is
+    // `ZZ1 + 2 a1 MX1 + a1² M1`, and the masses beyond sit at a1 too; link 2's mass moves into its
+    // first moment at a2 as in the planar elbow.
+    let planar = GENERAL_3R
+        .replace("alpha=al1", "alpha=0")
+        .replace("general 3R", "general 3R, axes 1 and 2 parallel");
+    let (reg, b) = base(&robot(&planar), RegressorOptions::default());
+    check_proved(&reg, &b);
+    assert_eq!(b.count(), 11);
+    assert_eq!(numeric_rank(&reg, &reg.y, 12, 7).unwrap(), 11);
+    assert_same_function(&b, &reg, "ZZR1", "ZZ1 + 2*a1*MX1 + a1^2*(M1 + M2 + M3)", 9);
+    assert_same_function(&b, &reg, "MXR2", "MX2 + a2*(M2 + M3)", 9);
 }
 
 /// The planar elbow by hand. Link i turns about z only (ω_i, α_i along z_i) and τ_i takes the z
@@ -382,8 +397,8 @@ fn random_chains_of_one_to_six_joints() {
         }
     }
     assert_eq!(proved, 24);
-    // Chains as generated whose coefficients were given and proved (seven with these seeds).
-    assert!(symbolic >= 6, "{symbolic}");
+    // Chains as generated whose coefficients were given and proved (eight with these seeds).
+    assert!(symbolic >= 8, "{symbolic}");
 }
 
 /// Samples of the numeric PUMA 560 (g = 9.81): τ from the scene's own compact Newton–Euler, plus

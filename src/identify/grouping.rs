@@ -18,6 +18,10 @@
 //! - **Link 1** turns about (or slides along) a fixed axis: its columns depend on its parameters only
 //!   through the inertia about the axis `uᵀ J_A u` (plus the rotor `Ia1`), the first moment about the
 //!   axis `u × (h − m A)` when gravity is not along the axis, and the friction coefficients.
+//! - **Links 2, 3, … of parallel revolute axes from the base** turn in a plane: each acts only
+//!   through `uᵀ J_A u`, `u × (h − m A)` and its mass, and the unit mass at `A` is the part that the
+//!   link before carries (as above). A dependent column is solved as a combination of the link's
+//!   pivots and that carried part.
 //!
 //! The elimination fixes which columns are dependent. Link by link, the relations are solved for the
 //! dependent columns of that link, the dependent columns of the link before replaced by what they
@@ -26,9 +30,10 @@
 //! polynomials: `cos α_2 / sin α_2`, written over one denominator monomial. They are proved like any
 //! others, with the denominators cleared ([`super::base`]).
 //!
-//! Where these relations are not all of them (special geometry: parallel axes with a symbolic twist
-//! elsewhere, a symbolic length that the numbers make zero) the count of dependent columns differs and
-//! this module says so; the count and the grouping are still exact.
+//! Where these relations are not all of them (other special geometry with a symbolic twist: a
+//! prismatic joint along or across the axis before it, parallel axes further out) the count of
+//! dependent columns differs, or a determinant is no monomial, and this module says so; the count
+//! and the grouping are still exact.
 
 use super::regressor::Regressor;
 use super::standard::{Quantity, StandardParam};
@@ -469,8 +474,16 @@ pub(super) fn coefficients(
     };
     let link_cols =
         |j: usize| -> Vec<usize> { (0..np).filter(|&k| reg.params[k].link == j).collect() };
+    let joints: Vec<JointAtZero> = (1..=n)
+        .map(|j| joint_at_zero(reg, j))
+        .collect::<Result<_, _>>()?;
+    // Whether joints 1..j are revolute about parallel axes (links 2..j turn in a plane).
+    let mut planar = true;
     for j in 1..=n {
-        let jz = joint_at_zero(reg, j)?;
+        let jz = &joints[j - 1];
+        planar = planar
+            && jz.kind == JointKind::Revolute
+            && (j == 1 || parallel_to_previous(jz, &joints[j - 2]));
         let cols = link_cols(j);
         let dep: Vec<usize> = cols
             .iter()
@@ -481,46 +494,43 @@ pub(super) fn coefficients(
             continue;
         }
 
-        if j == 1 {
-            let rows = link_one_rows(reg, &jz, &cols, &index)?;
-            let piv: Vec<usize> = cols.iter().copied().filter(|&k| is_pivot[k]).collect();
-            let at = |row: &BTreeMap<usize, Poly>, k: usize| {
-                row.get(&k).cloned().unwrap_or_else(Poly::zero)
+        // Link 1 turns about (or slides along) a fixed axis; links 2.. of a chain of parallel
+        // revolute axes from the base turn in a plane: either acts through a few quantities.
+        if j == 1 || planar {
+            let rows = if j == 1 {
+                link_one_rows(reg, jz, &cols, &index)?
+            } else {
+                planar_rows(reg, jz, &cols)
             };
-            if piv.is_empty() {
-                for &d in &dep {
-                    if rows.iter().any(|r| !at(r, d).is_zero()) {
-                        return Err(format!(
-                            "{} has an effect but no pivot of link 1 to group into",
-                            reg.params[d].name()
-                        ));
-                    }
-                    forms.insert(d, vec![Poly::zero(); np]);
+            // Link j ≥ 2: the unit mass on joint j's axis is the part of link j that the link
+            // before carries (its quantities known through link j − 1's columns).
+            let known: Vec<(Vec<Poly>, Vec<Poly>)> = if j == 1 {
+                vec![]
+            } else {
+                let b1 = point_mass(&jz.a);
+                let mut carried = vec![Poly::zero(); np];
+                for (k, v) in in_link(&b1.carried(&jz.rot, &jz.origin), j - 1, &index) {
+                    carried[k] = carried[k].add(&v);
                 }
-                continue;
-            }
-            let mut solved = None;
-            for pick in subsets(rows.len(), piv.len()) {
-                let m: Vec<Vec<Poly>> = pick
-                    .iter()
-                    .map(|&i| piv.iter().map(|&k| at(&rows[i], k)).collect())
-                    .collect();
-                let rhs: Vec<Vec<Poly>> = dep
-                    .iter()
-                    .map(|&d| pick.iter().map(|&i| at(&rows[i], d)).collect())
-                    .collect();
-                if let Some(x) = solve(&m, &rhs) {
-                    solved = Some(x);
-                    break;
-                }
-            }
-            let x = solved
-                .ok_or("the inertia of link 1 about its axis gives no monomial determinant")?;
+                vec![(quantities(&b1, jz).to_vec(), carried)]
+            };
+            let piv: Vec<usize> = cols.iter().copied().filter(|&k| is_pivot[k]).collect();
+            let x = solve_effective(&rows, &piv, &known, &dep).ok_or_else(|| {
+                format!("the quantities link {j} acts through give no monomial determinant")
+            })?;
             for (d, xd) in dep.iter().zip(x) {
                 let mut f = vec![Poly::zero(); np];
-                for (k, v) in piv.iter().zip(xd) {
-                    f[*k] = v;
+                for (k, v) in piv.iter().zip(&xd) {
+                    f[*k] = v.clone();
                 }
+                for ((_, carried), xk) in known.iter().zip(&xd[piv.len()..]) {
+                    for (o, c) in f.iter_mut().zip(carried) {
+                        if !c.is_zero() {
+                            *o = o.add(&xk.mul(c));
+                        }
+                    }
+                }
+                let f = resolve(&f, &forms)?;
                 forms.insert(*d, f);
             }
             continue;
@@ -534,11 +544,7 @@ pub(super) fn coefficients(
                     std::array::from_fn(|c| u.0[r].mul(&u.0[c]))
                 }));
                 vec![
-                    Body {
-                        j: sa.mul(&sa).scale(&Poly::int(-1)),
-                        h: a.clone(),
-                        m: Poly::one(),
-                    },
+                    point_mass(a),
                     Body {
                         j: su.mul(&sa).add(&sa.mul(&su)).scale(&Poly::int(-1)),
                         h: u.clone(),
@@ -582,20 +588,11 @@ pub(super) fn coefficients(
             ));
         };
         // Relation i: Σ_k b_ik Y_k (link j) = Σ_k (T b_i)_k Y_k (link j − 1).
-        let in_link = |b: &Body, link: usize| -> Vec<(usize, Poly)> {
-            Quantity::LINK
-                .iter()
-                .filter_map(|&q| {
-                    let k = *index.get(&StandardParam { link, quantity: q })?;
-                    Some((k, b.param(q)?))
-                })
-                .collect()
-        };
         let mut m: Vec<Vec<Poly>> = Vec::new();
         let mut rhs: Vec<Vec<Poly>> = Vec::new(); // rhs[i]: the relation's right side over all columns
         for b in &bodies {
-            let own = in_link(b, j);
-            let carried = in_link(&b.carried(&jz.rot, &jz.origin), j - 1);
+            let own = in_link(b, j, &index);
+            let carried = in_link(&b.carried(&jz.rot, &jz.origin), j - 1, &index);
             let mut r = vec![Poly::zero(); np];
             for (k, v) in carried {
                 r[k] = r[k].add(&v);
@@ -641,6 +638,98 @@ pub(super) fn coefficients(
             Ok(pivots.iter().map(|&r| lowest_terms(&f[r])).collect())
         })
         .collect()
+}
+
+/// The standard parameters of a body in link `link`'s columns: `(column, value)`.
+fn in_link(b: &Body, link: usize, index: &HashMap<StandardParam, usize>) -> Vec<(usize, Poly)> {
+    Quantity::LINK
+        .iter()
+        .filter_map(|&q| {
+            let k = *index.get(&StandardParam { link, quantity: q })?;
+            Some((k, b.param(q)?))
+        })
+        .collect()
+}
+
+/// A unit point mass at `a`: `J = −[a]×²`, `h = a`, `m = 1`.
+fn point_mass(a: &Vec3<Poly>) -> Body {
+    let sa = skew(a);
+    Body {
+        j: sa.mul(&sa).scale(&Poly::int(-1)),
+        h: a.clone(),
+        m: Poly::one(),
+    }
+}
+
+/// Whether joint `jz`'s axis is parallel to the axis of the joint before it (`prev`), both in the
+/// frame between them.
+fn parallel_to_previous(jz: &JointAtZero, prev: &JointAtZero) -> bool {
+    jz.rot.mul_vec(&jz.u).cross(&prev.u).is_exact_zero()
+}
+
+/// What a link turning in a plane (about axes parallel to its own joint's, `u` through `A`) acts
+/// through: its inertia about the axis `uᵀ J_A u`, its first moment across the axis
+/// `u × (h − m A)` (three components, two independent) and its mass.
+fn quantities(b: &Body, jz: &JointAtZero) -> [Poly; 5] {
+    let ja = b.inertia_about(&jz.a);
+    let w = jz.u.cross(&b.h.sub(&jz.a.scale(&b.m)));
+    let [w0, w1, w2] = w.0;
+    [jz.u.dot(&ja.mul_vec(&jz.u)), w0, w1, w2, b.m.clone()]
+}
+
+/// The rows of [`quantities`] over the inertial columns of a link turning in a plane.
+fn planar_rows(reg: &Regressor, jz: &JointAtZero, cols: &[usize]) -> Vec<BTreeMap<usize, Poly>> {
+    let mut rows = vec![BTreeMap::new(); 5];
+    for &k in cols {
+        if let Some(b) = Body::unit(reg.params[k].quantity) {
+            for (row, v) in rows.iter_mut().zip(quantities(&b, jz)) {
+                row.insert(k, v);
+            }
+        }
+    }
+    // All five rows stay, in order: the known parts' values are indexed by them.
+    rows
+}
+
+/// For each dependent column `d`: `x` with `Σ_p x_p L[·][p] + Σ_b x_b known_b = L[·][d]` over the
+/// rows `L` of what the link acts through (`known_b`: a quantity's values per row, for a part of
+/// the link the link before carries), from a square choice of rows whose determinant is a
+/// monomial. `x` lists the pivots' coefficients, then the known parts'.
+fn solve_effective(
+    rows: &[BTreeMap<usize, Poly>],
+    piv: &[usize],
+    known: &[(Vec<Poly>, Vec<Poly>)],
+    dep: &[usize],
+) -> Option<Vec<Vec<Poly>>> {
+    let at =
+        |row: &BTreeMap<usize, Poly>, k: usize| row.get(&k).cloned().unwrap_or_else(Poly::zero);
+    let width = piv.len() + known.len();
+    if width == 0 {
+        // Nothing to group into: every dependent column must act through nothing.
+        return dep
+            .iter()
+            .all(|&d| rows.iter().all(|r| at(r, d).is_zero()))
+            .then(|| vec![vec![]; dep.len()]);
+    }
+    // A known part's values are indexed like the rows (the five planar quantities).
+    let value =
+        |i: usize, b: &(Vec<Poly>, Vec<Poly>)| b.0.get(i).cloned().unwrap_or_else(Poly::zero);
+    subsets(rows.len(), width).into_iter().find_map(|pick| {
+        let m: Vec<Vec<Poly>> = pick
+            .iter()
+            .map(|&i| {
+                piv.iter()
+                    .map(|&k| at(&rows[i], k))
+                    .chain(known.iter().map(|b| value(i, b)))
+                    .collect()
+            })
+            .collect();
+        let rhs: Vec<Vec<Poly>> = dep
+            .iter()
+            .map(|&d| pick.iter().map(|&i| at(&rows[i], d)).collect())
+            .collect();
+        solve(&m, &rhs)
+    })
 }
 
 /// The rows of link 1's effective quantities over its columns (`column → coefficient`).
