@@ -23,27 +23,29 @@ const BUDGET: usize = LINE_WIDTH;
 /// The estimated printed width of LaTeX math source.
 pub fn width(latex: &str) -> usize {
     let mut w = 0;
-    let mut chars = latex.chars().peekable();
-    while let Some(c) = chars.next() {
+    let mut chars = latex.char_indices().peekable();
+    while let Some((at, c)) = chars.next() {
         match c {
             '\\' => {
-                let mut name = String::new();
-                while let Some(&n) = chars.peek() {
+                // The command's name, as a slice of the source (no allocation).
+                let start = at + 1;
+                let mut end = start;
+                while let Some(&(k, n)) = chars.peek() {
                     if n.is_ascii_alphabetic() {
-                        name.push(n);
+                        end = k + 1;
                         chars.next();
                     } else {
                         break;
                     }
                 }
-                if name.is_empty() {
+                if end == start {
                     // `\\`, `\,`, `\{`: a control symbol.
-                    if let Some(n) = chars.next() {
+                    if let Some((_, n)) = chars.next() {
                         w += usize::from(n == '{' || n == '}');
                     }
                     continue;
                 }
-                w += match name.as_str() {
+                w += match &latex[start..end] {
                     "sin" | "cos" | "tan" => 3,
                     "quad" => 2,
                     "frac" | "left" | "right" | "dot" | "ddot" | "dddot" | "ddddot" | "mathrm"

@@ -13,7 +13,7 @@
 //! `mass_matrix`, `coriolis`, `christoffel`, `gravity` and `potential` come from Euler–Lagrange;
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
-use super::{lhs_string, quantity_string, tau, Method, JSON_TIDY_BUDGET};
+use super::{lhs_strings, quantity_string, tau, Method, JSON_TIDY_BUDGET};
 use crate::algebra::Poly;
 use crate::dynamics::Derivation;
 use crate::print::poly::polys_to_strings;
@@ -65,10 +65,7 @@ pub fn json(der: &Derivation, method: Method) -> Value {
         Method::Lagrange => ("lagrange", Value::Null),
         Method::NewtonEuler(f) => ("newton-euler", Value::String(f.name().into())),
     };
-    let lhs: Vec<String> = tau(der, method)
-        .iter()
-        .map(|t| lhs_string(t, Style::Ascii))
-        .collect();
+    let lhs: Vec<String> = lhs_strings(tau(der, method), Style::Ascii);
     let equations: Vec<Value> = lhs
         .iter()
         .zip(&der.robot().inputs)

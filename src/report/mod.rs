@@ -55,6 +55,69 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
     print::sum_to_string(&lhs_terms(tau_k), style)
 }
 
+/// The display terms of every left side past [`DISPLAY_BUDGET`] (`None` for the others and where
+/// there are none), on several threads when there are several such sides: the terms come from the
+/// normal form by a renderer that reads and writes strings only (no tidying, no new atoms), so they
+/// are the same on any number of threads.
+fn large_pieces(taus: &[Poly], style: Style) -> Vec<Option<Vec<print::equation::Shown>>> {
+    let large: Vec<usize> = (0..taus.len())
+        .filter(|&k| taus[k].len() > DISPLAY_BUDGET)
+        .collect();
+    let mut out: Vec<Option<Vec<print::equation::Shown>>> = vec![None; taus.len()];
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
+    if threads < 2 || large.len() < 2 {
+        for k in large {
+            out[k] = print::equation::pieces(&taus[k], style);
+        }
+        return out;
+    }
+    let chunks: Vec<Vec<usize>> = (0..threads)
+        .map(|t| large.iter().copied().skip(t).step_by(threads).collect())
+        .collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = chunks
+            .iter()
+            .map(|chunk| {
+                scope.spawn(move || {
+                    chunk
+                        .iter()
+                        .map(|&k| (k, print::equation::pieces(&taus[k], style)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        for h in handles {
+            for (k, p) in h.join().expect("a printing thread does not panic") {
+                out[k] = p;
+            }
+        }
+    });
+    out
+}
+
+/// [`lhs_string`] of every equation, the large ones printed on several threads
+/// ([`large_pieces`]).
+pub fn lhs_strings(taus: &[Poly], style: Style) -> Vec<String> {
+    taus.iter()
+        .zip(large_pieces(taus, style))
+        .map(|(t, p)| match p {
+            Some(p) => print::equation::join(&p),
+            None => lhs_string(t, style),
+        })
+        .collect()
+}
+
+/// [`lhs_side`] of every equation, the large ones on several threads ([`large_pieces`]).
+pub fn lhs_sides(taus: &[Poly]) -> Vec<Side> {
+    taus.iter()
+        .zip(large_pieces(taus, Style::Latex))
+        .map(|(t, p)| match p {
+            Some(p) => Side::Shown(p),
+            None => lhs_side(t),
+        })
+        .collect()
+}
+
 /// The number of terms beyond which a quantity of a JSON document (`D`, `C`, `c_ijk`, `g`, `P`) is
 /// given as its normal form rather than tidied: a document is read by programs, and tidying its many
 /// medium-sized entries would cost more than deriving them.
@@ -88,25 +151,17 @@ pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
 /// long equations broken across rows ([`Layout::equations`]).
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
     if style == Style::Latex {
-        let equations: Vec<(Side, String)> = tau(der, method)
-            .iter()
+        let equations: Vec<(Side, String)> = lhs_sides(tau(der, method))
+            .into_iter()
             .zip(&der.robot().inputs)
-            .map(|(t, u)| {
-                (
-                    lhs_side(t),
-                    print::to_string(&Expr::sym(Symbol::new(u)), style),
-                )
-            })
+            .map(|(side, u)| (side, print::to_string(&Expr::sym(Symbol::new(u)), style)))
             .collect();
         return Layout::new().equations(&equations);
     }
-    let lines: Vec<(String, String)> = tau(der, method)
-        .iter()
+    let lines: Vec<(String, String)> = lhs_strings(tau(der, method), style)
+        .into_iter()
         .zip(&der.robot().inputs)
-        .map(|(t, u)| {
-            let input = print::to_string(&Expr::sym(Symbol::new(u)), style);
-            (lhs_string(t, style), input)
-        })
+        .map(|(lhs, u)| (lhs, print::to_string(&Expr::sym(Symbol::new(u)), style)))
         .collect();
     equalities(&lines, style)
 }
