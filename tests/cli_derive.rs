@@ -235,3 +235,22 @@ fn large_outputs_read_back_to_the_derived_polynomials() {
         }
     }
 }
+
+/// The large left sides are printed on several threads (`report::lhs_strings`); the text is the
+/// one each side gets alone, in order (ASCII and LaTeX, the Stanford arm's sides past the display
+/// budget).
+#[test]
+fn threaded_left_sides_print_as_each_alone() {
+    use symdyn::dynamics::Derivation;
+    use symdyn::parse::parse_scene;
+    use symdyn::print::Style;
+    use symdyn::report::{lhs_string, lhs_strings, DISPLAY_BUDGET};
+    let text = std::fs::read_to_string("examples/stanford.scene").expect("example scene");
+    let der = Derivation::new(parse_scene(&text).expect("valid").robot).expect("valid");
+    let tau = &der.lagrange().tau;
+    assert!(tau.iter().filter(|t| t.len() > DISPLAY_BUDGET).count() >= 2);
+    for style in [Style::Ascii, Style::Latex] {
+        let alone: Vec<String> = tau.iter().map(|t| lhs_string(t, style)).collect();
+        assert_eq!(lhs_strings(tau, style), alone);
+    }
+}

@@ -370,6 +370,27 @@ mod tests {
     }
 
     #[test]
+    fn many_terms_print_the_same_on_several_threads() {
+        // Past PARALLEL_TERMS in all, chunks go to threads: the strings must come back in order,
+        // each as one renderer on one thread prints it.
+        let ps: Vec<Poly> = (1..=12)
+            .map(|k| {
+                p(&format!(
+                    "(a + b*cos(q1) + c*sin(q2) + d*qd1 + e*x + {k})^7"
+                ))
+            })
+            .collect();
+        let refs: Vec<&Poly> = ps.iter().collect();
+        assert!(ps.iter().map(Poly::len).sum::<usize>() >= PARALLEL_TERMS);
+        let ranks = Ranks::of(refs.iter().copied()).expect("ranked");
+        for style in [Style::Text, Style::Latex] {
+            let mut one = Renderer::new(&ranks, style);
+            let want: Vec<String> = refs.iter().map(|q| one.sum(q, false)).collect();
+            assert_eq!(polys_to_strings(&refs, style), want);
+        }
+    }
+
+    #[test]
     fn prints_what_the_canonical_expression_prints() {
         let rows = [
             "0",
