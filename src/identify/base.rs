@@ -319,7 +319,7 @@ fn monomial_poly(e: &[u32], vars: &[Var]) -> Poly {
 }
 
 /// The rule that grouped standard parameter `p` of link `j`.
-fn rule(reg: &Regressor, p: &StandardParam) -> String {
+fn rule(reg: &Regressor, p: &StandardParam, planar: usize) -> String {
     let j = p.link;
     if p.quantity == Quantity::Fc {
         return format!(
@@ -335,6 +335,10 @@ fn rule(reg: &Regressor, p: &StandardParam) -> String {
     match reg.model.joints[j - 1].kind {
         JointKind::Revolute if j == 1 => "revolute joint 1: link 1 turns about a fixed axis, so it acts only through its inertia about that axis (and its first moment across the axis where gravity is not along it)".to_string(),
         JointKind::Prismatic if j == 1 => "prismatic joint 1: link 1 slides along a fixed axis without turning, so it acts only through its mass".to_string(),
+        JointKind::Revolute if j <= planar => format!(
+            "revolute joint {j}: its axis is parallel to those before it, so link {j} turns in a plane and acts only through its inertia about the axis, its first moment across it and its mass (its mass on the axis groups into link {})",
+            j - 1
+        ),
         JointKind::Revolute => format!(
             "revolute joint {j}: what of link {j} is invariant about the joint axis is grouped with the parameters before it (Khalil's grouping rule)"
         ),
@@ -484,6 +488,7 @@ fn attempt_once(
         .filter(|k| reg.zero_column(*k))
         .map(|k| (k, Fate::NoEffect))
         .collect();
+    let planar = grouping::planar_links(reg);
     for (d, &c) in dependent.iter().enumerate() {
         let k = cols[c];
         let into: Vec<usize> = (0..rank).filter(|&r| numeric[d][r]).collect();
@@ -491,7 +496,7 @@ fn attempt_once(
             eliminated.push((k, Fate::Vanishes));
             continue;
         }
-        let why = rule(reg, &reg.params[k]);
+        let why = rule(reg, &reg.params[k], planar);
         for &r in &into {
             base[r].terms.push((k, x[d][r].clone()));
             if !base[r].rules.contains(&why) {

@@ -429,6 +429,25 @@ fn subsets(n: usize, k: usize) -> Vec<Vec<usize>> {
     out
 }
 
+/// How many links from the base turn in a plane: joints `1..=k` revolute about parallel axes (0 when
+/// joint 1 is prismatic or a joint's geometry cannot be read at `q = 0`).
+pub(super) fn planar_links(reg: &Regressor) -> usize {
+    let mut k = 0;
+    let mut prev: Option<JointAtZero> = None;
+    for j in 1..=reg.dof() {
+        let Ok(jz) = joint_at_zero(reg, j) else {
+            break;
+        };
+        let parallel = prev.as_ref().is_none_or(|p| parallel_to_previous(&jz, p));
+        if jz.kind != JointKind::Revolute || !parallel {
+            break;
+        }
+        k = j;
+        prev = Some(jz);
+    }
+    k
+}
+
 /// The grouping coefficients `x[d][r]` (dependent column `dependent[d]`, pivot `pivots[r]`, both
 /// indices of standard parameters) with `Y_d = Σ_r x[d][r] Y_{pivots[r]}`, from the joint axes.
 pub(super) fn coefficients(
