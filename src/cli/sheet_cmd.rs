@@ -62,6 +62,7 @@ pub fn sheet_cmd(
     if identification {
         tex = symdyn::sheet::identification::with_identification(&der, &tex);
     }
+    super::derive_cmds::leave(der);
     let Some(path) = output else {
         return Ok(tex);
     };

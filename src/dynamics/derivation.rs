@@ -123,7 +123,12 @@ impl Derivation {
                 facts.push(Fact::NonRotatingLinks(still));
             }
         }
-        if self.compact().d_constant {
+        // Read off the expanded D when it is already derived; else decide on the compact one.
+        let d_constant = match self.lagrange.get() {
+            Some(el) => el.d_constant,
+            None => self.compact().d_constant,
+        };
+        if d_constant {
             facts.push(Fact::ConstantMassMatrix);
         }
         facts

@@ -9,7 +9,9 @@
 //! expanded and nothing else is factored. The atoms are ranked once ([`super::poly::Ranks`]), so no
 //! canonical expression is built for a term, and the result prints in time linear in the terms.
 
-use super::poly::{join_signed, Ranks, Renderer};
+#[cfg(doc)]
+use super::poly::join_signed;
+use super::poly::{Ranks, Renderer};
 use super::Style;
 use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::fast_hash::FxHashMap;
@@ -48,29 +50,62 @@ impl Body {
     pub fn text(&self) -> String {
         match self {
             Body::Product(s) => s.clone(),
+            Body::Group { .. } => {
+                let mut out = String::new();
+                self.write(&mut out);
+                out
+            }
+        }
+    }
+
+    /// [`Body::text`], appended to `out`.
+    fn write(&self, out: &mut String) {
+        match self {
+            Body::Product(s) => out.push_str(s),
             Body::Group {
                 before,
                 inner,
                 after,
                 style,
             } => {
-                let inner = join_terms(inner, true);
-                let open = match style {
-                    Style::Latex => format!("\\left({inner}\\right)"),
-                    _ => format!("({inner})"),
-                };
-                let sep = if *style == Style::Ascii { "*" } else { " " };
-                let mut out = String::new();
+                let sep = if *style == Style::Ascii { '*' } else { ' ' };
                 if !before.is_empty() {
                     out.push_str(before);
-                    out.push_str(sep);
+                    out.push(sep);
                 }
-                out.push_str(&open);
+                out.push_str(if *style == Style::Latex {
+                    "\\left("
+                } else {
+                    "("
+                });
+                write_terms(out, inner, true);
+                out.push_str(if *style == Style::Latex {
+                    "\\right)"
+                } else {
+                    ")"
+                });
                 if !after.is_empty() {
-                    out.push_str(sep);
+                    out.push(sep);
                     out.push_str(after);
                 }
-                out
+            }
+        }
+    }
+
+    /// Whether [`Body::text`] contains a space (decided without printing it).
+    fn has_space(&self) -> bool {
+        match self {
+            Body::Product(s) => s.contains(' '),
+            Body::Group {
+                before,
+                inner,
+                after,
+                style,
+            } => {
+                before.contains(' ')
+                    || after.contains(' ')
+                    || (*style != Style::Ascii && !(before.is_empty() && after.is_empty()))
+                    || inner.iter().any(|t| t.body.has_space())
             }
         }
     }
@@ -78,13 +113,29 @@ impl Body {
 
 /// Joins display terms into a sum, `a + b - c` (`0` when there are none).
 pub fn join(terms: &[Shown]) -> String {
-    join_terms(terms, false)
+    let mut out = String::with_capacity(terms.len() * 32);
+    write_terms(&mut out, terms, false);
+    out
 }
 
-fn join_terms(terms: &[Shown], nested: bool) -> String {
-    let signs: Vec<bool> = terms.iter().map(|t| t.negative).collect();
-    let bodies: Vec<String> = terms.iter().map(|t| t.body.text()).collect();
-    join_signed(&signs, &bodies, nested)
+/// The sum of `terms` appended to `out`, as [`join_signed`] lays it out: a `nested` sum is compact
+/// unless a term has a space.
+fn write_terms(out: &mut String, terms: &[Shown], nested: bool) {
+    if terms.is_empty() {
+        out.push('0');
+        return;
+    }
+    let spaced = !nested || terms.iter().any(|t| t.body.has_space());
+    let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
+    for (i, t) in terms.iter().enumerate() {
+        match (i, t.negative) {
+            (0, false) => {}
+            (0, true) => out.push('-'),
+            (_, false) => out.push_str(plus),
+            (_, true) => out.push_str(minus),
+        }
+        t.body.write(out);
+    }
 }
 
 /// Where a term's factor goes: into the key (`q̈_j`, `q̇_i`, or for the rest its trig monomial) or the

@@ -136,12 +136,28 @@ pub(super) fn cmp_factor_lists(a: &[(u32, i32)], b: &[(u32, i32)]) -> Ordering {
 
 /// Renders products of ranked atoms in one style, each `base^e` rendered once: the text the product
 /// printers of [`super::text`] and [`super::latex`] give, for products without negative powers
-/// (others go through those printers).
+/// (others go through those printers). Products are written into a caller's buffer
+/// ([`Renderer::product_into`]), so printing a large sum allocates little beyond its text.
 pub struct Renderer<'a> {
     ranks: &'a Ranks,
     style: Style,
-    /// `(rank, exponent, guarded)` → the factor's text.
-    cache: FxHashMap<(u32, i32, bool), String>,
+    /// Per rank, `(exponent, guarded)` → the factor's text (a rank has few distinct powers).
+    cache: Vec<Vec<(i32, bool, Box<str>)>>,
+}
+
+/// Appends the decimal digits of `n`.
+fn push_u64(out: &mut String, mut n: u64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.push_str(std::str::from_utf8(&buf[i..]).expect("ASCII digits"));
 }
 
 impl<'a> Renderer<'a> {
@@ -150,7 +166,7 @@ impl<'a> Renderer<'a> {
         Renderer {
             ranks,
             style,
-            cache: FxHashMap::default(),
+            cache: vec![Vec::new(); ranks.atoms.len()],
         }
     }
 
@@ -161,19 +177,33 @@ impl<'a> Renderer<'a> {
 
     fn factor(&mut self, rank: u32, exp: i32, guarded: bool) -> &str {
         let style = self.style;
-        let base = self.ranks.base(rank);
         let guarded = guarded && style == Style::Latex;
-        self.cache
-            .entry((rank, exp, guarded))
-            .or_insert_with(|| match style {
-                Style::Latex => latex::factor(base, exp as i64, guarded),
-                _ => text::Printer::new(style).factor(base, exp as i64),
-            })
+        let slot = &mut self.cache[rank as usize];
+        let at = match slot.iter().position(|&(e, g, _)| e == exp && g == guarded) {
+            Some(i) => i,
+            None => {
+                let base = self.ranks.base(rank);
+                let text = match style {
+                    Style::Latex => latex::factor(base, exp as i64, guarded),
+                    _ => text::Printer::new(style).factor(base, exp as i64),
+                };
+                slot.push((exp, guarded, text.into_boxed_str()));
+                slot.len() - 1
+            }
+        };
+        &slot[at].2
     }
 
     /// The magnitude of `|c| · Π factors` (factors sorted by rank): `2 m2 lc2^2`, `1/2 m1`,
     /// `\\frac{1}{2} m_{1}`.
     pub fn product(&mut self, c: &Rational, factors: &[(u32, i32)]) -> String {
+        let mut out = String::with_capacity(16 + 8 * factors.len());
+        self.product_into(&mut out, c, factors);
+        out
+    }
+
+    /// [`Renderer::product`], appended to `out`.
+    pub fn product_into(&mut self, out: &mut String, c: &Rational, factors: &[(u32, i32)]) {
         if factors.iter().any(|&(_, e)| e < 0) {
             let list: Vec<(Expr, i64)> = factors
                 .iter()
@@ -183,22 +213,12 @@ impl<'a> Renderer<'a> {
                 negative: false,
                 product: Product::new(&c.abs(), &list),
             };
-            return sum_string(std::slice::from_ref(&piece), self.style);
+            out.push_str(&sum_string(std::slice::from_ref(&piece), self.style));
+            return;
         }
         let latex = self.style == Style::Latex;
         let sep = if self.style == Style::Ascii { '*' } else { ' ' };
-        let (numer, denom) = match c.as_small() {
-            Some((n, d)) => (n.unsigned_abs().to_string(), d.to_string()),
-            None => {
-                let n = c.numer();
-                let n = if n < num_bigint::BigInt::from(0) {
-                    -n
-                } else {
-                    n
-                };
-                (n.to_string(), c.denom().to_string())
-            }
-        };
+        let start = out.len();
         // Leading surds and powers of π join the number.
         let numeric = factors
             .iter()
@@ -206,33 +226,50 @@ impl<'a> Renderer<'a> {
                 matches!(atom::class(self.ranks.atom(r)), Class::Sqrt | Class::Pi)
             })
             .count();
-        let mut number = String::new();
-        if numer != "1" {
-            number.push_str(&numer);
+        // The number: the numerator unless it is 1, then the numeric factors; `1` when empty and
+        // over a denominator.
+        let small = c.as_small();
+        let denom_one = match small {
+            Some((_, d)) => d == 1,
+            None => c.denom() == num_bigint::BigInt::from(1),
+        };
+        if !denom_one && latex {
+            out.push_str("\\frac{");
+        }
+        let number_start = out.len();
+        match small {
+            Some((n, _)) if n.unsigned_abs() == 1 => {}
+            Some((n, _)) => push_u64(out, n.unsigned_abs()),
+            None => {
+                let n = c.numer();
+                let n = if n < num_bigint::BigInt::from(0) {
+                    -n
+                } else {
+                    n
+                };
+                if n != num_bigint::BigInt::from(1) {
+                    out.push_str(&n.to_string());
+                }
+            }
         }
         for &(r, e) in &factors[..numeric] {
-            if !number.is_empty() {
-                number.push(sep);
+            if out.len() > number_start {
+                out.push(sep);
             }
-            let f = self.factor(r, e, false).to_string();
-            number.push_str(&f);
+            out.push_str(self.factor(r, e, false));
         }
-        let mut out = String::with_capacity(16 + 8 * factors.len());
-        if denom != "1" {
-            let n = if number.is_empty() { "1" } else { &number };
-            if latex {
-                out.push_str("\\frac{");
-                out.push_str(n);
-                out.push_str("}{");
-                out.push_str(&denom);
-                out.push('}');
-            } else {
-                out.push_str(n);
-                out.push('/');
-                out.push_str(&denom);
+        if !denom_one {
+            if out.len() == number_start {
+                out.push('1');
             }
-        } else {
-            out.push_str(&number);
+            out.push_str(if latex { "}{" } else { "/" });
+            match small {
+                Some((_, d)) => push_u64(out, d as u64),
+                None => out.push_str(&c.denom().to_string()),
+            }
+            if latex {
+                out.push('}');
+            }
         }
         let rest = &factors[numeric..];
         for (i, &(r, e)) in rest.iter().enumerate() {
@@ -240,18 +277,14 @@ impl<'a> Renderer<'a> {
                 && rest.get(i + 1).is_some_and(|&(next, _)| {
                     !matches!(atom::class(self.ranks.atom(next)), Class::Sin | Class::Cos)
                 });
-            if !out.is_empty() {
+            if out.len() > start {
                 out.push(sep);
             }
-            let f: &str = self.factor(r, e, guarded);
-            // `out` and the cache are distinct borrows of self only through `factor`.
-            let f = f.to_owned();
-            out.push_str(&f);
+            out.push_str(self.factor(r, e, guarded));
         }
-        if out.is_empty() {
+        if out.len() == start {
             out.push('1');
         }
-        out
     }
 
     /// The canonical sum of `p`'s terms, printed (`nested`: compact unless a term has a space).
@@ -272,17 +305,29 @@ impl<'a> Renderer<'a> {
             terms.push((key, c));
         }
         terms.sort_by(|a, b| cmp_factor_lists(&a.0, &b.0));
-        let mut signs = Vec::with_capacity(terms.len() + 1);
-        let mut bodies = Vec::with_capacity(terms.len() + 1);
-        for (key, c) in &terms {
-            signs.push(c.is_negative());
-            bodies.push(self.product(c, key));
-        }
         if let Some(c) = constant {
-            signs.push(c.is_negative());
-            bodies.push(self.product(c, &[]));
+            terms.push((Vec::new(), c));
         }
-        join_signed(&signs, &bodies, nested)
+        if nested {
+            let signs: Vec<bool> = terms.iter().map(|(_, c)| c.is_negative()).collect();
+            let bodies: Vec<String> = terms.iter().map(|(k, c)| self.product(c, k)).collect();
+            return join_signed(&signs, &bodies, nested);
+        }
+        if terms.is_empty() {
+            return "0".to_string();
+        }
+        // Not nested: always spaced, so every term is written straight into the text.
+        let mut out = String::with_capacity(terms.len() * 24);
+        for (i, (key, c)) in terms.iter().enumerate() {
+            match (i, c.is_negative()) {
+                (0, false) => {}
+                (0, true) => out.push('-'),
+                (_, false) => out.push_str(" + "),
+                (_, true) => out.push_str(" - "),
+            }
+            self.product_into(&mut out, c, key);
+        }
+        out
     }
 }
 

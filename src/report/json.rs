@@ -42,14 +42,15 @@ impl Quantities {
         }
     }
 
-    fn ascii(&self, p: &Poly) -> Value {
-        Value::String(match self.big.get(&(p as *const Poly)) {
-            Some(s) => s.clone(),
+    /// `p` printed (each large polynomial's text is taken, not copied: every quantity is printed once).
+    fn ascii(&mut self, p: &Poly) -> Value {
+        Value::String(match self.big.remove(&(p as *const Poly)) {
+            Some(s) => s,
             None => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
         })
     }
 
-    fn matrix(&self, m: &[Vec<Poly>]) -> Value {
+    fn matrix(&mut self, m: &[Vec<Poly>]) -> Value {
         Value::Array(
             m.iter()
                 .map(|r| Value::Array(r.iter().map(|p| self.ascii(p)).collect()))
@@ -76,22 +77,26 @@ pub fn json(der: &Derivation, method: Method) -> Value {
     all.extend(nonzero.iter().map(|(_, _, _, c)| *c));
     all.extend(el.g.iter());
     all.push(&el.p);
-    let q = Quantities::new(&all);
+    let mut q = Quantities::new(&all);
     let christoffel: Vec<Value> = nonzero
         .iter()
         .map(|(i, jj, k, c)| j!({ "i": i, "j": jj, "k": k, "value": q.ascii(c) }))
         .collect();
+    let mass_matrix = q.matrix(&el.d);
+    let coriolis = q.matrix(&el.c);
+    let gravity: Vec<Value> = el.g.iter().map(|p| q.ascii(p)).collect();
+    let potential = q.ascii(&el.p);
     j!({
         "robot": der.robot().name,
         "method": method_name,
         "frame": frame,
         "coordinates": der.coordinates().iter().map(|s| s.ascii_name()).collect::<Vec<_>>(),
         "inputs": der.robot().inputs,
-        "mass_matrix": q.matrix(&el.d),
-        "coriolis": q.matrix(&el.c),
+        "mass_matrix": mass_matrix,
+        "coriolis": coriolis,
         "christoffel": christoffel,
-        "gravity": el.g.iter().map(|p| q.ascii(p)).collect::<Vec<_>>(),
-        "potential": q.ascii(&el.p),
+        "gravity": gravity,
+        "potential": potential,
         "equations": equations,
         "tau": lhs,
         "facts": der.facts().iter().map(|f| f.to_string()).collect::<Vec<_>>(),
