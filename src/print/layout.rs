@@ -20,45 +20,79 @@ pub const LINE_WIDTH: usize = 66;
 /// The internal name of [`LINE_WIDTH`].
 const BUDGET: usize = LINE_WIDTH;
 
-/// The estimated printed width of LaTeX math source.
+/// The estimated printed width of LaTeX math source. Read byte by byte: every byte that starts a
+/// character counts as that character (commands are ASCII; any other character is one unit).
 pub fn width(latex: &str) -> usize {
+    let bytes = latex.as_bytes();
     let mut w = 0;
-    let mut chars = latex.char_indices().peekable();
-    while let Some((at, c)) = chars.next() {
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i];
+        i += 1;
         match c {
-            '\\' => {
+            b'\\' => {
                 // The command's name, as a slice of the source (no allocation).
-                let start = at + 1;
-                let mut end = start;
-                while let Some(&(k, n)) = chars.peek() {
-                    if n.is_ascii_alphabetic() {
-                        end = k + 1;
-                        chars.next();
-                    } else {
-                        break;
-                    }
+                let start = i;
+                while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
+                    i += 1;
                 }
-                if end == start {
-                    // `\\`, `\,`, `\{`: a control symbol.
-                    if let Some((_, n)) = chars.next() {
-                        w += usize::from(n == '{' || n == '}');
+                if i == start {
+                    // `\\`, `\,`, `\{`: a control symbol (its continuation bytes, if any, count
+                    // nothing below).
+                    if let Some(&n) = bytes.get(i) {
+                        w += usize::from(n == b'{' || n == b'}');
+                        i += 1;
                     }
                     continue;
                 }
-                w += match &latex[start..end] {
-                    "sin" | "cos" | "tan" => 3,
-                    "quad" => 2,
-                    "frac" | "left" | "right" | "dot" | "ddot" | "dddot" | "ddddot" | "mathrm"
-                    | "begin" | "end" | "bmatrix" | "sqrt" => 0,
+                w += match &bytes[start..i] {
+                    b"sin" | b"cos" | b"tan" => 3,
+                    b"quad" => 2,
+                    b"frac" | b"left" | b"right" | b"dot" | b"ddot" | b"dddot" | b"ddddot"
+                    | b"mathrm" | b"begin" | b"end" | b"bmatrix" | b"sqrt" => 0,
                     _ => 1,
                 };
             }
-            '{' | '}' | '^' | '_' | ' ' | '&' => {}
-            '+' | '-' | '=' => w += 2,
+            b'{' | b'}' | b'^' | b'_' | b' ' | b'&' => {}
+            b'+' | b'-' | b'=' => w += 2,
+            // A continuation byte of a multi-byte character.
+            _ if c & 0xC0 == 0x80 => {}
             _ => w += 1,
         }
     }
     w
+}
+
+/// The [`width`] of a LaTeX display term's text, read from its parts without printing them, and counted
+/// only until it passes `cap` (a larger value is returned then): a large group is measured in time
+/// of the line, not of its whole sum. The parts are whole tokens joined by signs, spaces and
+/// parentheses, so their widths add.
+fn shown_width(body: &Body, cap: usize) -> usize {
+    match body {
+        Body::Product(s) => width(s),
+        Body::Group {
+            before,
+            inner,
+            after,
+            ..
+        } => {
+            // `\left(` and `\right)` are one unit each; every sign two.
+            let mut w = width(before) + width(after) + 2;
+            if inner.is_empty() {
+                return w + 1;
+            }
+            for (i, t) in inner.iter().enumerate() {
+                if w > cap {
+                    break;
+                }
+                if i > 0 || t.negative {
+                    w += 2;
+                }
+                w += shown_width(&t.body, cap.saturating_sub(w));
+            }
+            w
+        }
+    }
 }
 
 /// Lays out display math; numbers the abbreviations it introduces across one document.
@@ -287,14 +321,13 @@ impl Layout {
         let pieces: Vec<(bool, String)> = shown
             .iter()
             .map(|t| {
-                let text = t.body.text();
                 let body = match &t.body {
                     Body::Group {
                         before,
                         inner,
                         after,
                         ..
-                    } if width(&text) > room => {
+                    } if shown_width(&t.body, room) > room => {
                         self.abbreviations += 1;
                         let name = print::to_string(
                             &Expr::sym(Symbol::new(&format!("Xi{}", self.abbreviations))),
@@ -308,7 +341,7 @@ impl Layout {
                             .collect::<Vec<&str>>()
                             .join(" ")
                     }
-                    _ => text,
+                    _ => t.body.text(),
                 };
                 (t.negative, body)
             })
@@ -317,19 +350,21 @@ impl Layout {
         let mut line = String::new();
         let mut used = 0;
         for (i, (negative, body)) in pieces.iter().enumerate() {
-            let joined = match (i, negative) {
-                (0, false) => body.clone(),
-                (0, true) => format!("-{body}"),
-                (_, false) => format!(" + {body}"),
-                (_, true) => format!(" - {body}"),
+            // The sign and its spaces: `-` first, ` + ` or ` - ` after (a sign is 2 units wide).
+            let sign = match (i, negative) {
+                (0, false) => "",
+                (0, true) => "-",
+                (_, false) => " + ",
+                (_, true) => " - ",
             };
-            let w = width(&joined);
+            let w = width(body) + if sign.is_empty() { 0 } else { 2 };
             if !line.is_empty() && used + w > room {
                 lines.push(std::mem::take(&mut line));
                 used = 0;
             }
             used += w;
-            line.push_str(&joined);
+            line.push_str(sign);
+            line.push_str(body);
         }
         if pieces.is_empty() {
             line.push('0');
@@ -475,8 +510,28 @@ mod tests {
             ("m_{1} g", 3),
             ("\\frac{1}{2} m_{1}", 4),
             ("\\sin q_{2} + \\ddot{q}_{1}", 9),
+            // A control symbol, then characters of several bytes: one unit each.
+            ("\\,θ_{é} - 1", 5),
         ] {
             assert_eq!(width(latex), w, "{latex}");
+        }
+    }
+
+    #[test]
+    fn a_display_term_is_measured_as_its_text() {
+        let p = crate::algebra::to_poly(
+            &parse_expr(
+                "(m1*a^2 + m1*b - m2*c*d + 1/2*I1) * qdd1 - m2*(x*sin(q2) + y) * qd1*qd2 \
+                 - 3*g*cos(q1) - (a + b*pi)*qdd2",
+            )
+            .unwrap(),
+        );
+        let shown = print::equation::pieces(&p, Style::Latex).expect("plain atoms");
+        for t in &shown {
+            let w = width(&t.body.text());
+            assert_eq!(shown_width(&t.body, usize::MAX), w, "{}", t.body.text());
+            // Capped below its width, it says only that it is wider.
+            assert!(shown_width(&t.body, w.saturating_sub(3)) > w.saturating_sub(3));
         }
     }
 
