@@ -480,6 +480,16 @@ impl Layout {
         grouping: Grouping,
     ) -> String {
         let shown: Vec<Expr> = v.iter().map(|e| e.tidy_by(grouping)).collect();
+        self.vector_shown(lhs, &shown, component)
+    }
+
+    /// [`Layout::vector`] of components already in their display form.
+    pub fn vector_shown(
+        &mut self,
+        lhs: &str,
+        shown: &[Expr],
+        component: &dyn Fn(usize) -> String,
+    ) -> String {
         let widest = shown
             .iter()
             .map(|e| width(&print::to_string(e, Style::Latex)))
@@ -488,7 +498,7 @@ impl Layout {
         if width(lhs) + 6 + widest <= BUDGET {
             return format!(
                 "\\[ {lhs} = {} \\]\n",
-                print::vector_to_string(&shown, Style::Latex)
+                print::vector_to_string(shown, Style::Latex)
             );
         }
         let mut out = String::new();

@@ -35,6 +35,7 @@ pub mod equation;
 mod latex;
 pub mod layout;
 pub mod names;
+pub mod parallel;
 pub mod poly;
 mod text;
 

@@ -111,6 +111,21 @@ const NOTATION: &str = "%%NOTATION%%\n";
 
 /// The complete LaTeX document of the solution sheet of `der`.
 pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
+    // The proofs of the last section take about as long as all the others on a large robot, and
+    // depend on nothing they print: they run on a thread of their own meanwhile.
+    std::thread::scope(|scope| {
+        let proofs = (opts.scope == Scope::Full).then(|| scope.spawn(|| agreement(der)));
+        let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
+        document(der, opts, proofs)
+    })
+}
+
+/// The sheet's text, with the agreement section from `proofs` (called once, when it is due).
+fn document(
+    der: &Derivation,
+    opts: &SheetOptions,
+    proofs: impl FnOnce() -> Option<String>,
+) -> String {
     let mut lay = Layout::new();
     let compact = compact_mode(der);
     let mut out = String::from(PREAMBLE);
@@ -126,16 +141,22 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             (true, scope) => lagrange_compact::section(der, &mut lay, scope == Scope::Brief),
         });
     }
-    for frame in opts.frames() {
+    let frames = opts.frames();
+    let tidied = if compact {
+        Default::default()
+    } else {
+        newton_euler::tidy_vectors(der, &frames)
+    };
+    for frame in frames {
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, &mut lay)
         } else {
-            newton_euler::section(der, frame, &mut lay)
+            newton_euler::section(der, frame, &mut lay, &tidied)
         });
     }
-    match opts.scope {
-        Scope::Full => out.push_str(&agreement(der)),
-        Scope::MassAndGravity | Scope::Brief => out.push_str(
+    match proofs() {
+        Some(agreement) => out.push_str(&agreement),
+        None => out.push_str(
             "\\texttt{symdyn check} proves that the Euler--Lagrange and Newton--Euler formulations \
              agree.\n\n",
         ),

@@ -3,10 +3,12 @@
 //! and torques, and the equations.
 
 use super::layout::Layout;
-use crate::algebra::tidy::Grouping;
+use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Poly};
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::{Convention, Derivation, Frame, JointKind};
+use crate::print::parallel;
+use std::collections::HashMap;
 
 fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
     v.0.iter().map(Poly::to_expr).collect()
@@ -18,10 +20,75 @@ fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
 /// minutes. The equations of motion are always printed in full; the numeric PUMA 560 stays below it.
 const MAX_TERMS: usize = 1000;
 
-/// `name` as a vector display, components `(name)_x` … when too wide, or its length when too long.
-fn vector(lay: &mut Layout, name: &str, v: &Vec3<Poly>) -> String {
-    let longest = v.0.iter().map(Poly::len).max().unwrap_or(0);
-    if longest > MAX_TERMS {
+/// The display form (tidied, [`Grouping::Leading`]) of the vectors of the Newton–Euler sections,
+/// by frame and name, computed before the sections are laid out: tidying is most of a sheet's work,
+/// and the vectors are independent, so they are tidied on several threads
+/// ([`crate::print::parallel::map`]); the layout, which numbers abbreviations, stays in order.
+#[derive(Default)]
+pub(super) struct Tidied(HashMap<(Frame, String), Vec<Expr>>);
+
+/// The vectors a section prints for `frame`, with their names, in order.
+fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
+    let ne = der.newton_euler(frame);
+    let n = der.robot().dof();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let k = i + 1;
+        out.push((format!("\\omega_{{{k}}}"), &ne.omega[i]));
+        out.push((format!("\\alpha_{{{k}}}"), &ne.alpha[i]));
+        out.push((format!("a_{{c,{k}}}"), &ne.a_c[i]));
+        out.push((format!("a_{{e,{k}}}"), &ne.a_e[i]));
+        out.push((format!("g_{{{k}}}"), &ne.g[i]));
+        out.push((format!("f_{{{k}}}"), &ne.f[i]));
+        if let Some(m) = &ne.n[i] {
+            out.push((format!("n_{{{k}}}"), m));
+        }
+    }
+    if let Some(a) = &ne.a_payload {
+        out.push(("a_{c,L}".to_string(), a));
+    }
+    out
+}
+
+/// [`Tidied`] for the sections of `frames` (each vector short enough to print).
+pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
+    let jobs: Vec<(Frame, String, &Vec3<Poly>)> = frames
+        .iter()
+        .flat_map(|&frame| {
+            vectors(der, frame)
+                .into_iter()
+                .map(move |(name, v)| (frame, name, v))
+        })
+        .filter(|(_, _, v)| longest(v) <= MAX_TERMS)
+        .collect();
+    // Tidying costs about the square of a component's terms; below ~100 000 in all, one thread.
+    let shown = parallel::map(
+        &jobs,
+        |(_, _, v)| v.0.iter().map(|c| c.len() * c.len()).sum(),
+        100_000,
+        |(_, _, v)| {
+            v.0.iter()
+                .map(|c| c.tidy_by(Grouping::Leading))
+                .collect::<Vec<Expr>>()
+        },
+    );
+    Tidied(
+        jobs.into_iter()
+            .zip(shown)
+            .map(|((frame, name, _), e)| ((frame, name), e))
+            .collect(),
+    )
+}
+
+/// The most terms of a component of `v`.
+fn longest(v: &Vec3<Poly>) -> usize {
+    v.0.iter().map(Poly::len).max().unwrap_or(0)
+}
+
+/// `name` as a vector display, components `(name)_x` … when too wide, or its length when too long;
+/// its display form from `tidied` when there (else tidied here).
+fn vector(lay: &mut Layout, tidied: &Tidied, frame: Frame, name: &str, v: &Vec3<Poly>) -> String {
+    if longest(v) > MAX_TERMS {
         let sizes: Vec<String> = v.0.iter().map(|c| c.len().to_string()).collect();
         return format!(
             "${name}$ is too long to print: its components have {} terms when expanded.\n\n",
@@ -29,12 +96,11 @@ fn vector(lay: &mut Layout, name: &str, v: &Vec3<Poly>) -> String {
         );
     }
     let base = name.to_string();
-    lay.vector(
-        name,
-        &v.0,
-        &move |k| format!("({base})_{{{}}}", ["x", "y", "z"][k]),
-        Grouping::Leading,
-    )
+    let component = move |k: usize| format!("({base})_{{{}}}", ["x", "y", "z"][k]);
+    match tidied.0.get(&(frame, name.to_string())) {
+        Some(shown) => lay.vector_shown(name, shown, &component),
+        None => lay.vector(name, &v.0, &component, Grouping::Leading),
+    }
 }
 
 /// The moment equation of the backward recursion as `dynamics::newton_euler` computes it,
@@ -57,7 +123,7 @@ fn moment_formula(convention: Convention) -> &'static str {
 }
 
 /// The section for `frame`.
-pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> String {
+pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout, tidied: &Tidied) -> String {
     let robot = der.robot();
     let n = robot.dof();
     let ne = der.newton_euler(frame);
@@ -96,17 +162,41 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
     for i in 0..n {
         let k = i + 1;
         out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
-        out.push_str(&vector(lay, &format!("\\omega_{{{k}}}"), &ne.omega[i]));
-        out.push_str(&vector(lay, &format!("\\alpha_{{{k}}}"), &ne.alpha[i]));
-        out.push_str(&vector(lay, &format!("a_{{c,{k}}}"), &ne.a_c[i]));
-        out.push_str(&vector(lay, &format!("a_{{e,{k}}}"), &ne.a_e[i]));
-        out.push_str(&vector(lay, &format!("g_{{{k}}}"), &ne.g[i]));
+        out.push_str(&vector(
+            lay,
+            tidied,
+            frame,
+            &format!("\\omega_{{{k}}}"),
+            &ne.omega[i],
+        ));
+        out.push_str(&vector(
+            lay,
+            tidied,
+            frame,
+            &format!("\\alpha_{{{k}}}"),
+            &ne.alpha[i],
+        ));
+        out.push_str(&vector(
+            lay,
+            tidied,
+            frame,
+            &format!("a_{{c,{k}}}"),
+            &ne.a_c[i],
+        ));
+        out.push_str(&vector(
+            lay,
+            tidied,
+            frame,
+            &format!("a_{{e,{k}}}"),
+            &ne.a_e[i],
+        ));
+        out.push_str(&vector(lay, tidied, frame, &format!("g_{{{k}}}"), &ne.g[i]));
         if let (true, Some(a)) = (k == n, &ne.a_payload) {
             out.push_str("The payload's centre of mass moves with link ");
             out.push_str(&format!(
                 "{k}, as $a_{{c,{k}}}$ with $r_{{{k},c_L}}$ for $r_{{{k},c_{k}}}$:\n"
             ));
-            out.push_str(&vector(lay, "a_{c,L}", a));
+            out.push_str(&vector(lay, tidied, frame, "a_{c,L}", a));
         }
     }
     out.push_str(&format!(
@@ -127,9 +217,9 @@ pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> Strin
     for i in (0..n).rev() {
         let k = i + 1;
         out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
-        out.push_str(&vector(lay, &format!("f_{{{k}}}"), &ne.f[i]));
+        out.push_str(&vector(lay, tidied, frame, &format!("f_{{{k}}}"), &ne.f[i]));
         match &ne.n[i] {
-            Some(m) => out.push_str(&vector(lay, &format!("n_{{{k}}}"), m)),
+            Some(m) => out.push_str(&vector(lay, tidied, frame, &format!("n_{{{k}}}"), m)),
             None => out.push_str(&format!(
                 "The torque $n_{{{k}}}$ is not needed: only prismatic joints precede link {k}.\n"
             )),
