@@ -254,3 +254,51 @@ fn threaded_left_sides_print_as_each_alone() {
         assert_eq!(lhs_strings(tau, style), alone);
     }
 }
+
+/// `symdyn` with `SYMDYN_THREADS` set.
+fn symdyn_threads(threads: &str, args: &[&str]) -> (String, String, i32) {
+    let out = Command::new(env!("CARGO_BIN_EXE_symdyn"))
+        .args(args)
+        .env("SYMDYN_THREADS", threads)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs");
+    (
+        String::from_utf8(out.stdout).expect("utf-8"),
+        String::from_utf8(out.stderr).expect("utf-8"),
+        out.status.code().unwrap_or(-1),
+    )
+}
+
+/// Sheets tidy their Newton–Euler vectors and prove the agreement on several threads, and `derive`
+/// prints large quantities on several; atoms are then interned in a different order on every run.
+/// The text must be the one a single thread prints (four threads on this machine's cores interleave
+/// the most).
+#[test]
+fn several_threads_print_what_one_prints() {
+    for args in [
+        &["sheet", "examples/scara.scene"][..],
+        &["sheet", "examples/stanford.scene"],
+        &["derive", "examples/stanford.scene", "--format", "json"],
+        &[
+            "derive",
+            "examples/puma560_symbolic.scene",
+            "--format",
+            "latex",
+        ],
+    ] {
+        let (one, _, code) = symdyn_threads("1", args);
+        assert_eq!(code, 0, "{args:?}");
+        for _ in 0..2 {
+            let (many, _, code) = symdyn_threads("4", args);
+            assert_eq!(code, 0, "{args:?}");
+            assert!(many == one, "{args:?}: the text differs on four threads");
+        }
+    }
+    let (_, err, code) = symdyn_threads("none", &["derive"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("SYMDYN_THREADS=\"none\": expected a whole number of threads"),
+        "{err}"
+    );
+}

@@ -379,6 +379,19 @@ pub enum Command {
 
 /// Runs one command and returns what it prints.
 pub fn run(args: Args) -> Result<String, CliError> {
+    if let Ok(v) = std::env::var("SYMDYN_THREADS") {
+        let n = v
+            .trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&n| n >= 1)
+            .ok_or_else(|| {
+                CliError::Input(format!(
+                    "error: SYMDYN_THREADS={v:?}: expected a whole number of threads, at least 1"
+                ))
+            })?;
+        symdyn::print::parallel::set_threads(n);
+    }
     derive_cmds::set_urdf_options(UrdfOptions {
         base: args.base_link,
         tip: args.tip_link,

@@ -11,10 +11,27 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// The most threads a display job uses.
+/// The most threads a display job uses by default.
 const MAX_THREADS: usize = 4;
 
-/// `f` of every item, in the items' order, computed on up to [`MAX_THREADS`] threads when `weight`
+/// The number of threads set by [`set_threads`] (0: decide from the machine).
+static THREADS: AtomicUsize = AtomicUsize::new(0);
+
+/// Sets how many threads [`map`] may use (at least 1; 0 restores the default, the machine's cores
+/// up to [`MAX_THREADS`]). The text printed is the same for every setting.
+pub fn set_threads(n: usize) {
+    THREADS.store(n, Ordering::Relaxed);
+}
+
+/// The number of threads [`map`] uses.
+pub fn threads() -> usize {
+    match THREADS.load(Ordering::Relaxed) {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS)),
+        n => n,
+    }
+}
+
+/// `f` of every item, in the items' order, computed on up to [`threads`] threads when `weight`
 /// (an estimate of each item's cost) sums to at least `min_total`; on the calling thread otherwise.
 /// Threads take items heaviest first, one at a time, so a few large items do not leave a thread idle.
 pub fn map<T: Sync, R: Send>(
@@ -23,7 +40,7 @@ pub fn map<T: Sync, R: Send>(
     min_total: usize,
     f: impl Fn(&T) -> R + Sync,
 ) -> Vec<R> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS));
+    let threads = threads();
     let weights: Vec<usize> = items.iter().map(&weight).collect();
     let total: usize = weights.iter().sum();
     if threads < 2 || items.len() < 2 || total < min_total {

@@ -348,49 +348,16 @@ pub fn poly_to_string(p: &Poly, style: Style) -> String {
 const PARALLEL_TERMS: usize = 4000;
 
 /// Several polynomials printed in `style`, their atoms ranked once. Many terms are printed on
-/// several threads, each polynomial whole on one of them: a renderer reads the ranks and writes
-/// strings only, so the text is the same on any number of threads.
+/// several threads ([`super::parallel::map`]), each polynomial whole on one of them: a renderer reads
+/// the ranks and writes strings only, so the text is the same on any number of threads.
 pub fn polys_to_strings(ps: &[&Poly], style: Style) -> Vec<String> {
     match Ranks::of(ps.iter().copied()) {
-        Some(r) => {
-            let total: usize = ps.iter().map(|p| p.len()).sum();
-            let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
-            if threads < 2 || total < PARALLEL_TERMS || ps.len() < 2 {
-                let mut renderer = Renderer::new(&r, style);
-                return ps.iter().map(|p| renderer.sum(p, false)).collect();
-            }
-            // Contiguous chunks of about equal terms.
-            let mut bounds = vec![0];
-            let mut acc = 0;
-            for (i, p) in ps.iter().enumerate() {
-                acc += p.len();
-                if acc * threads >= total * bounds.len() && bounds.len() < threads {
-                    bounds.push(i + 1);
-                }
-            }
-            bounds.push(ps.len());
-            bounds.dedup();
-            let r = &r;
-            std::thread::scope(|scope| {
-                let handles: Vec<_> = bounds
-                    .windows(2)
-                    .map(|w| {
-                        let chunk = &ps[w[0]..w[1]];
-                        scope.spawn(move || {
-                            let mut renderer = Renderer::new(r, style);
-                            chunk
-                                .iter()
-                                .map(|p| renderer.sum(p, false))
-                                .collect::<Vec<String>>()
-                        })
-                    })
-                    .collect();
-                handles
-                    .into_iter()
-                    .flat_map(|h| h.join().expect("a printing thread does not panic"))
-                    .collect()
-            })
-        }
+        Some(r) => super::parallel::map(
+            ps,
+            |p| p.len(),
+            PARALLEL_TERMS,
+            |p| Renderer::new(&r, style).sum(p, false),
+        ),
         None => ps
             .iter()
             .map(|p| super::to_string(&p.to_expr(), style))

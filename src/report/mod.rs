@@ -63,35 +63,16 @@ fn large_pieces(taus: &[Poly], style: Style) -> Vec<Option<Vec<print::equation::
     let large: Vec<usize> = (0..taus.len())
         .filter(|&k| taus[k].len() > DISPLAY_BUDGET)
         .collect();
+    let shown = print::parallel::map(
+        &large,
+        |&k| taus[k].len(),
+        2 * DISPLAY_BUDGET,
+        |&k| print::equation::pieces(&taus[k], style),
+    );
     let mut out: Vec<Option<Vec<print::equation::Shown>>> = vec![None; taus.len()];
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
-    if threads < 2 || large.len() < 2 {
-        for k in large {
-            out[k] = print::equation::pieces(&taus[k], style);
-        }
-        return out;
+    for (k, p) in large.into_iter().zip(shown) {
+        out[k] = p;
     }
-    let chunks: Vec<Vec<usize>> = (0..threads)
-        .map(|t| large.iter().copied().skip(t).step_by(threads).collect())
-        .collect();
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = chunks
-            .iter()
-            .map(|chunk| {
-                scope.spawn(move || {
-                    chunk
-                        .iter()
-                        .map(|&k| (k, print::equation::pieces(&taus[k], style)))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        for h in handles {
-            for (k, p) in h.join().expect("a printing thread does not panic") {
-                out[k] = p;
-            }
-        }
-    });
     out
 }
 
