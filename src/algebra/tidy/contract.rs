@@ -30,7 +30,7 @@ use super::rule::{first_change, fixpoint, Rule};
 use crate::algebra::expr::{Expr, Func, Kind};
 use crate::algebra::normal::normal_form;
 use crate::algebra::number::Rational;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// The most passes [`contract_trig`] makes (each pass merges at least one pair of terms).
 pub const PASS_LIMIT: usize = 64;
@@ -157,6 +157,8 @@ pub(super) struct Term {
     pub coeff: Rational,
     /// The factors `(base, exponent)`, in canonical order.
     pub factors: Vec<(Expr, i64)>,
+    /// Their product, as the sum holds it (so it is never rebuilt from the factors).
+    monomial: Expr,
 }
 
 impl Term {
@@ -167,12 +169,16 @@ impl Term {
             .map(|(t, coeff)| Term {
                 coeff,
                 factors: t.factors(),
+                monomial: t,
             })
             .collect()
     }
 
     /// The product of the factors, with the exponent of factor `i` lowered by `k` for each `(i, k)`.
     pub fn monomial_without(&self, lower: &[(usize, i64)]) -> Expr {
+        if lower.is_empty() {
+            return self.monomial.clone();
+        }
         Expr::product(self.factors.iter().enumerate().map(|(i, (b, k))| {
             let less: i64 = lower.iter().filter(|(j, _)| *j == i).map(|(_, d)| d).sum();
             b.pow(k - less)
@@ -203,7 +209,9 @@ pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Optio
 fn angle_sum(e: &Expr) -> Option<Expr> {
     let terms = Term::split(e);
     // (other factors R, angle A, angle B) -> the terms `c R f(A) g(B)`, A < B in canonical order.
-    let mut groups: BTreeMap<(Expr, Expr, Expr), Vec<Candidate>> = BTreeMap::new();
+    // Keyed first by R's factor list (canonical lists are equal exactly when the products are), so
+    // the product R is built only for the groups of two or more, the only ones that can merge.
+    let mut buckets: HashMap<(Vec<(Expr, i64)>, Expr, Expr), Vec<Candidate>> = HashMap::new();
     for (index, t) in terms.iter().enumerate() {
         let trig: Vec<(usize, Func, &Expr)> = t
             .factors
@@ -224,8 +232,16 @@ fn angle_sum(e: &Expr) -> Option<Expr> {
                 } else {
                     ((b, g), (a, f))
                 };
-                let rest = t.monomial_without(&[(i, 1), (j, 1)]);
-                groups
+                let rest: Vec<(Expr, i64)> = t
+                    .factors
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(n, (base, k))| {
+                        let k = if n == i || n == j { k - 1 } else { *k };
+                        (k != 0).then(|| (base.clone(), k))
+                    })
+                    .collect();
+                buckets
                     .entry((rest, a.clone(), b.clone()))
                     .or_default()
                     .push(Candidate {
@@ -236,6 +252,18 @@ fn angle_sum(e: &Expr) -> Option<Expr> {
             }
         }
     }
+    // Visited in canonical order of (R, A, B), never in hash order.
+    let groups: BTreeMap<(Expr, Expr, Expr), Vec<Candidate>> = buckets
+        .into_iter()
+        .filter(|(_, cands)| cands.len() >= 2)
+        .map(|((rest, a, b), cands)| {
+            let rest = Expr::product(rest.into_iter().map(|(base, k)| {
+                base.pow(k)
+                    .expect("bases of a canonical product are non-zero")
+            }));
+            ((rest, a, b), cands)
+        })
+        .collect();
     let mut used = vec![false; terms.len()];
     let mut merged = Vec::new();
     for ((rest, a, b), cands) in &groups {
