@@ -205,13 +205,16 @@ pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Optio
     Some(Expr::sum(kept.chain(merged)))
 }
 
+/// The other factors `R` of a candidate term (as a canonical factor list) and its angles `A < B`.
+type BucketKey = (Vec<(Expr, i64)>, Expr, Expr);
+
 /// One pass of the angle-sum identities over the terms of `e`.
 fn angle_sum(e: &Expr) -> Option<Expr> {
     let terms = Term::split(e);
     // (other factors R, angle A, angle B) -> the terms `c R f(A) g(B)`, A < B in canonical order.
     // Keyed first by R's factor list (canonical lists are equal exactly when the products are), so
     // the product R is built only for the groups of two or more, the only ones that can merge.
-    let mut buckets: HashMap<(Vec<(Expr, i64)>, Expr, Expr), Vec<Candidate>> = HashMap::new();
+    let mut buckets: HashMap<BucketKey, Vec<Candidate>> = HashMap::new();
     for (index, t) in terms.iter().enumerate() {
         let trig: Vec<(usize, Func, &Expr)> = t
             .factors
