@@ -112,6 +112,27 @@ pub enum Side {
 }
 
 impl Side {
+    /// The [`width`] of [`Side::latex`], counted only until it passes `cap` (a larger value is
+    /// returned then), so a large side is not printed to learn that it does not fit a line.
+    fn width_at_most(&self, cap: usize) -> usize {
+        match self {
+            Side::Terms(_) => width(&self.latex()),
+            Side::Shown(shown) => {
+                let mut w = 0;
+                for (i, t) in shown.iter().enumerate() {
+                    if w > cap {
+                        break;
+                    }
+                    if i > 0 || t.negative {
+                        w += 2;
+                    }
+                    w += shown_width(&t.body, cap.saturating_sub(w));
+                }
+                w.max(usize::from(shown.is_empty()))
+            }
+        }
+    }
+
     fn latex(&self) -> String {
         match self {
             Side::Terms(t) => print::sum_to_string(t, Style::Latex),
@@ -235,18 +256,15 @@ impl Layout {
     /// `  t1 + t2 &= u_{1}`. Otherwise every row is left-aligned and a long equation runs on over
     /// rows of at most [`LINE_WIDTH`] (`  & t1 + t2`, `  &\quad + t3 = u_{1}`); a term wider than
     /// a line has its widest sum factor abbreviated (`\Xi_{1}`), given after `\intertext{where}`.
-    pub fn equations(&mut self, equations: &[(Side, String)]) -> String {
-        let one_line: Vec<(String, &String)> = equations
+    pub fn equations(&mut self, equations: Vec<(Side, String)>) -> String {
+        // Every equation on one line? Measured without printing a side that cannot fit.
+        let fits = equations
             .iter()
-            .map(|(side, rhs)| (side.latex(), rhs))
-            .collect();
-        let rows: Vec<String> = if one_line
-            .iter()
-            .all(|(l, r)| width(l) + 2 + width(r) <= BUDGET)
-        {
-            one_line
+            .all(|(side, rhs)| side.width_at_most(BUDGET) + 2 + width(rhs) <= BUDGET);
+        let rows: Vec<String> = if fits {
+            equations
                 .iter()
-                .map(|(l, r)| format!("  {l} &= {r}"))
+                .map(|(side, r)| format!("  {} &= {r}", side.latex()))
                 .collect()
         } else {
             let mut later: Vec<(String, Side)> = Vec::new();
@@ -259,7 +277,7 @@ impl Layout {
             while !later.is_empty() {
                 for (name, side) in std::mem::take(&mut later) {
                     let start = format!("{name} = ");
-                    let mut these = self.left_rows(&side, "", &mut later);
+                    let mut these = self.left_rows(side, "", &mut later);
                     these[0] = these[0].replacen("  & ", &format!("  & {start}"), 1);
                     if first {
                         these[0] = format!("  \\intertext{{where}}\n{}", these[0]);
@@ -278,18 +296,13 @@ impl Layout {
 
     /// The rows `  & line` and `  &\quad line` of one left-aligned sum ending with `end`, each at
     /// most [`LINE_WIDTH`] wide.
-    fn left_rows(
-        &mut self,
-        side: &Side,
-        end: &str,
-        later: &mut Vec<(String, Side)>,
-    ) -> Vec<String> {
+    fn left_rows(&mut self, side: Side, end: &str, later: &mut Vec<(String, Side)>) -> Vec<String> {
         // Room for `\quad` (2), the end, and an abbreviation's `\Xi_{k} = ` (6) on the first row.
         let room = BUDGET.saturating_sub(width(end) + 8).max(20);
         let lines = match side {
             Side::Terms(terms) => {
                 let mut exprs = Vec::new();
-                let lines = self.lines(terms, room, &mut exprs);
+                let lines = self.lines(&terms, room, &mut exprs);
                 later.extend(exprs.into_iter().map(|(n, e)| (n, Side::Terms(vec![e]))));
                 lines
             }
@@ -314,34 +327,39 @@ impl Layout {
     /// a group too wide for a line is abbreviated (`\Xi_{k}`) and its sum pushed onto `later`.
     fn shown_lines(
         &mut self,
-        shown: &[Shown],
+        shown: Vec<Shown>,
         room: usize,
         later: &mut Vec<(String, Side)>,
     ) -> Vec<String> {
+        let empty = shown.is_empty();
         let pieces: Vec<(bool, String)> = shown
-            .iter()
+            .into_iter()
             .map(|t| {
-                let body = match &t.body {
+                let wide =
+                    matches!(t.body, Body::Group { .. }) && shown_width(&t.body, room) > room;
+                let body = match t.body {
                     Body::Group {
                         before,
                         inner,
                         after,
                         ..
-                    } if shown_width(&t.body, room) > room => {
+                    } if wide => {
                         self.abbreviations += 1;
                         let name = print::to_string(
                             &Expr::sym(Symbol::new(&format!("Xi{}", self.abbreviations))),
                             Style::Latex,
                         );
-                        later.push((name.clone(), Side::Shown(inner.clone())));
-                        [before.as_str(), name.as_str(), after.as_str()]
+                        let text = [before.as_str(), name.as_str(), after.as_str()]
                             .iter()
                             .filter(|s| !s.is_empty())
                             .copied()
                             .collect::<Vec<&str>>()
-                            .join(" ")
+                            .join(" ");
+                        later.push((name, Side::Shown(inner)));
+                        text
                     }
-                    _ => t.body.text(),
+                    Body::Product(s) => s,
+                    group => group.text(),
                 };
                 (t.negative, body)
             })
@@ -366,7 +384,7 @@ impl Layout {
             line.push_str(sign);
             line.push_str(body);
         }
-        if pieces.is_empty() {
+        if empty {
             line.push('0');
         }
         lines.push(line);
@@ -543,6 +561,12 @@ mod tests {
             // Capped below its width, it says only that it is wider.
             assert!(shown_width(&t.body, w.saturating_sub(3)) > w.saturating_sub(3));
         }
+        // A whole side likewise, and an empty one is `0`.
+        let w = width(&print::equation::join(&shown));
+        let side = Side::Shown(shown);
+        assert_eq!(side.width_at_most(usize::MAX), w);
+        assert!(side.width_at_most(10) > 10);
+        assert_eq!(Side::Shown(vec![]).width_at_most(usize::MAX), 1);
     }
 
     #[test]

@@ -137,7 +137,7 @@ pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
             .zip(&der.robot().inputs)
             .map(|(side, u)| (side, print::to_string(&Expr::sym(Symbol::new(u)), style)))
             .collect();
-        return Layout::new().equations(&equations);
+        return Layout::new().equations(equations);
     }
     let lines: Vec<(String, String)> = lhs_strings(tau(der, method), style)
         .into_iter()
