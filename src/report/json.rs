@@ -13,51 +13,53 @@
 //! `mass_matrix`, `coriolis`, `christoffel`, `gravity` and `potential` come from Euler–Lagrange;
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
-use super::{lhs_strings, quantity_string, tau, Method, JSON_TIDY_BUDGET};
+use super::{lhs_string, quantity_string, tau, Method, JSON_TIDY_BUDGET};
 use crate::algebra::Poly;
 use crate::dynamics::Derivation;
-use crate::print::poly::polys_to_strings;
+use crate::print::parallel;
+use crate::print::poly::{poly_to_string, Ranks, Renderer};
 use crate::print::Style;
 use serde_json::{json as j, Value};
 
-/// The quantities of a document printed in ASCII, the large ones by one shared polynomial printer.
-struct Quantities {
-    big: std::collections::HashMap<*const Poly, String>,
+/// One expression of a document to print.
+enum Job<'a> {
+    /// An equation's left side ([`lhs_string`]).
+    Lhs(&'a Poly),
+    /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the shared renderer.
+    Large(&'a Poly),
+    /// A smaller quantity, tidied ([`quantity_string`]).
+    Small(&'a Poly),
 }
 
-impl Quantities {
-    fn new(polys: &[&Poly]) -> Quantities {
-        let large: Vec<&Poly> = polys
-            .iter()
-            .copied()
-            .filter(|p| p.len() > JSON_TIDY_BUDGET)
-            .collect();
-        let strings = polys_to_strings(&large, Style::Ascii);
-        Quantities {
-            big: large
-                .into_iter()
-                .map(|p| p as *const Poly)
-                .zip(strings)
-                .collect(),
-        }
-    }
-
-    /// `p` printed (each large polynomial's text is taken, not copied: every quantity is printed once).
-    fn ascii(&mut self, p: &Poly) -> Value {
-        Value::String(match self.big.remove(&(p as *const Poly)) {
-            Some(s) => s,
-            None => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
+/// Every expression of a document printed in ASCII, in the order of `jobs`, on several threads
+/// ([`parallel::map`]: the text is the same on any number): the large quantities share one ranking
+/// of their atoms.
+fn print_all(jobs: &[Job]) -> Vec<String> {
+    let large: Vec<&Poly> = jobs
+        .iter()
+        .filter_map(|j| match j {
+            Job::Large(p) => Some(*p),
+            _ => None,
         })
-    }
-
-    fn matrix(&mut self, m: &[Vec<Poly>]) -> Value {
-        Value::Array(
-            m.iter()
-                .map(|r| Value::Array(r.iter().map(|p| self.ascii(p)).collect()))
-                .collect(),
-        )
-    }
+        .collect();
+    let ranks = Ranks::of(large.iter().copied());
+    let weight = |j: &Job| match j {
+        Job::Lhs(p) | Job::Large(p) => p.len(),
+        // Tidying costs far more per term than printing.
+        Job::Small(p) => 20 * p.len() * p.len(),
+    };
+    parallel::map(jobs, weight, PARALLEL_WORK, |j| match j {
+        Job::Lhs(p) => lhs_string(p, Style::Ascii),
+        Job::Large(p) => match &ranks {
+            Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
+            None => poly_to_string(p, Style::Ascii),
+        },
+        Job::Small(p) => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
+    })
 }
+
+/// Below this much work in all ([`print_all`]'s weights), a document is printed on one thread.
+const PARALLEL_WORK: usize = 4000;
 
 /// The JSON document of a derivation.
 pub fn json(der: &Derivation, method: Method) -> Value {
@@ -66,26 +68,47 @@ pub fn json(der: &Derivation, method: Method) -> Value {
         Method::Lagrange => ("lagrange", Value::Null),
         Method::NewtonEuler(f) => ("newton-euler", Value::String(f.name().into())),
     };
-    let lhs: Vec<String> = lhs_strings(tau(der, method), Style::Ascii);
+    let taus = tau(der, method);
+    let nonzero = el.nonzero_christoffel();
+    let mut quantities: Vec<&Poly> = el.d.iter().chain(&el.c).flatten().collect();
+    quantities.extend(nonzero.iter().map(|(_, _, _, c)| *c));
+    quantities.extend(el.g.iter());
+    quantities.push(&el.p);
+    let jobs: Vec<Job> = taus
+        .iter()
+        .map(Job::Lhs)
+        .chain(quantities.iter().map(|&p| {
+            if p.len() > JSON_TIDY_BUDGET {
+                Job::Large(p)
+            } else {
+                Job::Small(p)
+            }
+        }))
+        .collect();
+    let mut printed = print_all(&jobs).into_iter().map(Value::String);
+    let mut next = || printed.next().expect("one string per expression");
+    let lhs: Vec<Value> = taus.iter().map(|_| next()).collect();
     let equations: Vec<Value> = lhs
         .iter()
         .zip(&der.robot().inputs)
         .map(|(l, u)| j!({ "lhs": l, "rhs": u }))
         .collect();
-    let nonzero = el.nonzero_christoffel();
-    let mut all: Vec<&Poly> = el.d.iter().chain(&el.c).flatten().collect();
-    all.extend(nonzero.iter().map(|(_, _, _, c)| *c));
-    all.extend(el.g.iter());
-    all.push(&el.p);
-    let mut q = Quantities::new(&all);
+    let n = el.d.len();
+    let mut matrix = |rows: usize| -> Value {
+        Value::Array(
+            (0..rows)
+                .map(|_| Value::Array((0..n).map(|_| next()).collect()))
+                .collect(),
+        )
+    };
+    let mass_matrix = matrix(el.d.len());
+    let coriolis = matrix(el.c.len());
     let christoffel: Vec<Value> = nonzero
         .iter()
-        .map(|(i, jj, k, c)| j!({ "i": i, "j": jj, "k": k, "value": q.ascii(c) }))
+        .map(|(i, jj, k, _)| j!({ "i": i, "j": jj, "k": k, "value": next() }))
         .collect();
-    let mass_matrix = q.matrix(&el.d);
-    let coriolis = q.matrix(&el.c);
-    let gravity: Vec<Value> = el.g.iter().map(|p| q.ascii(p)).collect();
-    let potential = q.ascii(&el.p);
+    let gravity: Vec<Value> = el.g.iter().map(|_| next()).collect();
+    let potential = next();
     j!({
         "robot": der.robot().name,
         "method": method_name,
