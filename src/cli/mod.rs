@@ -72,8 +72,10 @@ pub enum Command {
         /// Print ASCII (qd1, qdd1, explicit *) instead of Unicode.
         #[arg(long)]
         ascii: bool,
-        /// With `--method newton-euler`: print the compact program of named intermediates
-        /// (`w3_2 = …`, then `tau_k = …`) instead of the expanded equations.
+        /// Print every quantity of the method as a program of named intermediates instead of
+        /// expanded: Euler–Lagrange `D` (composite rigid bodies), the Christoffel symbols, `g` and the
+        /// equations (`Jc1_33 = …`, `D1_1 = …`); Newton–Euler the recursion (`w3_2 = …`, then
+        /// `tau_k = …`). In every format; small at any size, so use it for large robots.
         #[arg(long)]
         compact: bool,
     },
