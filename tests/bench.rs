@@ -162,6 +162,9 @@ fn quick_bench_writes_consistent_results() {
         .filter(|r| r[0] == "ppp" && (r[2] == "e2e-sheet" || r[2] == "e2e-check"))
         .collect();
     assert!(ppp.iter().any(|r| r[5] == "10"), "{ppp:?}");
+    // The floor of every process: `symdyn --version`.
+    let startup = row(&rows, "ppp", "e2e-startup");
+    assert_eq!(startup[3], "ok", "{startup:?}");
     for robot in ["ppp", "rpp"] {
         for m in [
             "e2e-derive-text",
@@ -197,7 +200,8 @@ fn quick_bench_writes_consistent_results() {
         "`symdyn bench --quick",
         "| chain-2 | 2 |",
         "| ppp | 3 |",
-        "derive ÷ EL",
+        "derive ÷ EL (text / LaTeX / JSON)",
+        "`symdyn --version`",
         "## Identification",
         "| random-7M0 | 7 |",
     ] {

@@ -254,7 +254,10 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
 
     let ppp_e2e: Vec<&Record> = records
         .iter()
-        .filter(|r| r.robot == "ppp" && (r.method == "e2e-sheet" || r.method == "e2e-check"))
+        .filter(|r| {
+            r.robot == "ppp"
+                && matches!(r.method.as_str(), "e2e-sheet" | "e2e-check" | "e2e-startup")
+        })
         .collect();
     let cmds = [
         "e2e-derive-text",
@@ -270,10 +273,13 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str(
             "print; output discarded), so that printing can never hide behind a fast derivation. ",
         );
-        s.push_str("`derive ÷ EL` is the JSON `derive` (Euler–Lagrange, printed in full) over the expanded Euler–Lagrange ");
-        s.push_str("derivation alone (table above); `sheet ÷ check` the sheet over `symdyn check`. Pages: of the sheet ");
+        s.push_str("`derive ÷ EL` is the whole `derive` process (Euler–Lagrange, printed in full) in text, LaTeX and JSON ");
+        s.push_str("over the expanded Euler–Lagrange derivation alone, in process (table above): the cost of starting, ");
+        s.push_str("reading the scene and printing, as a multiple of deriving (a process that does nothing, `symdyn ");
+        s.push_str("--version`, takes the time in the PPP table below, which is most of a small robot's `derive`); ");
+        s.push_str("`sheet ÷ check` the sheet over `symdyn check`. Pages: of the sheet ");
         s.push_str("compiled by pdflatex, with the overfull boxes its log reports.\n\n");
-        s.push_str("| robot | n | derive (text) | derive (LaTeX) | derive (JSON) | derive --compact | check | sheet | derive ÷ EL | sheet ÷ check | sheet pages |\n");
+        s.push_str("| robot | n | derive (text) | derive (LaTeX) | derive (JSON) | derive --compact | check | sheet | derive ÷ EL (text / LaTeX / JSON) | sheet ÷ check | sheet pages |\n");
         s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
         let secs = |robot: &str, m: &str| {
             find(records, robot, m)
@@ -297,7 +303,9 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
                 .unwrap_or_else(|| "–".into());
             row.push_str(&format!(
                 " {} | {} | {pages} |\n",
-                ratio(secs(&robot, "e2e-derive-json"), secs(&robot, "el")),
+                ["text", "latex", "json"]
+                    .map(|f| ratio(secs(&robot, &format!("e2e-derive-{f}")), secs(&robot, "el")))
+                    .join(" / "),
                 ratio(secs(&robot, "e2e-sheet"), secs(&robot, "e2e-check")),
             ));
             s.push_str(&row);
@@ -308,7 +316,10 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             for r in ppp_e2e {
                 s.push_str(&format!(
                     "| `symdyn {}` | {} | {} | {} |\n",
-                    r.method.trim_start_matches("e2e-"),
+                    match r.method.as_str() {
+                        "e2e-startup" => "--version",
+                        m => m.trim_start_matches("e2e-"),
+                    },
                     cell(Some(r)),
                     opt(r.calls),
                     r.note

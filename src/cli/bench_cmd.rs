@@ -781,6 +781,14 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     let spawns = if args.quick { 10 } else { 30 };
     records.push(runner.end_to_end(("ppp", 3), "e2e-sheet", &["sheet"], spawns, f64::INFINITY));
     records.push(runner.end_to_end(("ppp", 3), "e2e-check", &["check"], spawns, f64::INFINITY));
+    // The floor: a process that starts and prints one line.
+    records.push(runner.end_to_end(
+        ("ppp", 3),
+        "e2e-startup",
+        &["--version"],
+        spawns,
+        f64::INFINITY,
+    ));
     // Every command and format, whole processes, on every example: printing can never hide.
     let (runs, budget) = if args.quick { (3, 2.0) } else { (11, 10.0) };
     for spec in &examples {
