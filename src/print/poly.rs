@@ -11,7 +11,7 @@
 
 use super::{latex, text, Piece, Product, Style};
 use crate::algebra::atom::{self, AtomId, Class};
-use crate::algebra::fast_hash::FxHashMap;
+use crate::algebra::fast_hash::{FxHashMap, FxHashSet};
 use crate::algebra::{Expr, Poly, Rational};
 use std::cmp::Ordering;
 
@@ -39,14 +39,15 @@ fn plain(id: AtomId) -> bool {
 impl Ranks {
     /// Ranks for the atoms of `polys`, or `None` if one of them is not plain.
     pub fn of<'a, I: IntoIterator<Item = &'a Poly>>(polys: I) -> Option<Ranks> {
-        let mut ids: Vec<AtomId> = Vec::new();
+        // The distinct atoms (a few dozen, among many more factors).
+        let mut seen: FxHashSet<AtomId> = FxHashSet::default();
         for p in polys {
             for (m, _) in p.terms() {
-                ids.extend(m.factors().iter().map(|&(id, _)| id));
+                seen.extend(m.factors().iter().map(|&(id, _)| id));
             }
         }
+        let mut ids: Vec<AtomId> = seen.into_iter().collect();
         ids.sort_unstable();
-        ids.dedup();
         if !ids.iter().all(|&id| plain(id)) {
             return None;
         }
