@@ -158,6 +158,34 @@ fn flat_terms(terms: &[Expr]) -> Vec<Expr> {
         .collect()
 }
 
+/// An expression in its display form, printed ahead of the layout: its LaTeX and each of its terms'
+/// (what [`Layout::vector_prepared`] measures and lays out). Preparing is pure, so it may run on any
+/// thread; only the layout, which numbers abbreviations, runs in order.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    /// The expression.
+    pub expr: Expr,
+    /// Its LaTeX.
+    latex: String,
+    /// Its terms with their LaTeX ([`term_string`]).
+    terms: Vec<(Expr, String)>,
+}
+
+impl Prepared {
+    /// `expr` printed, whole and term by term.
+    pub fn new(expr: Expr) -> Prepared {
+        let latex = print::to_string(&expr, Style::Latex);
+        let terms = flat_terms(std::slice::from_ref(&expr))
+            .into_iter()
+            .map(|t| {
+                let s = term_string(&t);
+                (t, s)
+            })
+            .collect();
+        Prepared { expr, latex, terms }
+    }
+}
+
 impl Layout {
     /// A new layout, with no abbreviations yet.
     pub fn new() -> Layout {
@@ -174,6 +202,23 @@ impl Layout {
     /// across `align*` lines when too long. A term too wide for a line has its widest sum factor
     /// replaced by an abbreviation, which is given after the equation.
     pub fn terms(&mut self, lhs: Option<&str>, terms: &[Expr], rhs: Option<&str>) -> String {
+        let printed = flat_terms(terms)
+            .into_iter()
+            .map(|t| {
+                let s = term_string(&t);
+                (t, s)
+            })
+            .collect();
+        self.printed_terms(lhs, printed, rhs)
+    }
+
+    /// [`Layout::terms`] of terms already printed (each with its [`term_string`]).
+    fn printed_terms(
+        &mut self,
+        lhs: Option<&str>,
+        terms: Vec<(Expr, String)>,
+        rhs: Option<&str>,
+    ) -> String {
         let mut later: Vec<(String, Expr)> = Vec::new();
         let prefix = lhs.map_or(0, |l| width(l) + 2);
         let room = BUDGET.saturating_sub(prefix).max(20);
@@ -217,13 +262,13 @@ impl Layout {
     /// abbreviated, and the abbreviation's name and value are pushed onto `later`. No terms are `0`.
     fn lines(
         &mut self,
-        terms: &[Expr],
+        terms: Vec<(Expr, String)>,
         room: usize,
         later: &mut Vec<(String, Expr)>,
     ) -> Vec<String> {
-        let pieces: Vec<String> = flat_terms(terms)
-            .iter()
-            .map(|t| self.fit_term(t, room, later))
+        let pieces: Vec<String> = terms
+            .into_iter()
+            .map(|(t, s)| self.fit_term(&t, s, room, later))
             .collect();
         let mut lines: Vec<String> = Vec::new();
         let mut line = String::new();
@@ -302,7 +347,14 @@ impl Layout {
         let lines = match side {
             Side::Terms(terms) => {
                 let mut exprs = Vec::new();
-                let lines = self.lines(&terms, room, &mut exprs);
+                let printed = flat_terms(&terms)
+                    .into_iter()
+                    .map(|t| {
+                        let s = term_string(&t);
+                        (t, s)
+                    })
+                    .collect();
+                let lines = self.lines(printed, room, &mut exprs);
                 later.extend(exprs.into_iter().map(|(n, e)| (n, Side::Terms(vec![e]))));
                 lines
             }
@@ -392,8 +444,13 @@ impl Layout {
     }
 
     /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
-    fn fit_term(&mut self, t: &Expr, room: usize, later: &mut Vec<(String, Expr)>) -> String {
-        let s = term_string(t);
+    fn fit_term(
+        &mut self,
+        t: &Expr,
+        s: String,
+        room: usize,
+        later: &mut Vec<(String, Expr)>,
+    ) -> String {
         if width(&s) <= room {
             return s;
         }
@@ -508,20 +565,29 @@ impl Layout {
         shown: &[Expr],
         component: &dyn Fn(usize) -> String,
     ) -> String {
-        let widest = shown
-            .iter()
-            .map(|e| width(&print::to_string(e, Style::Latex)))
-            .max()
-            .unwrap_or(0);
+        let prepared: Vec<Prepared> = shown.iter().cloned().map(Prepared::new).collect();
+        self.vector_prepared(lhs, prepared, component)
+    }
+
+    /// [`Layout::vector`] of components already in their display form and printed
+    /// ([`Prepared`]).
+    pub fn vector_prepared(
+        &mut self,
+        lhs: &str,
+        prepared: Vec<Prepared>,
+        component: &dyn Fn(usize) -> String,
+    ) -> String {
+        let widest = prepared.iter().map(|p| width(&p.latex)).max().unwrap_or(0);
         if width(lhs) + 6 + widest <= BUDGET {
+            let shown: Vec<Expr> = prepared.into_iter().map(|p| p.expr).collect();
             return format!(
                 "\\[ {lhs} = {} \\]\n",
-                print::vector_to_string(shown, Style::Latex)
+                print::vector_to_string(&shown, Style::Latex)
             );
         }
         let mut out = String::new();
-        for (k, e) in shown.iter().enumerate() {
-            out.push_str(&self.terms(Some(&component(k)), std::slice::from_ref(e), None));
+        for (k, p) in prepared.into_iter().enumerate() {
+            out.push_str(&self.printed_terms(Some(&component(k)), p.terms, None));
         }
         out
     }

@@ -142,7 +142,7 @@ fn document(
         });
     }
     let frames = opts.frames();
-    let tidied = if compact {
+    let mut tidied = if compact {
         Default::default()
     } else {
         newton_euler::tidy_vectors(der, &frames)
@@ -151,7 +151,7 @@ fn document(
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, &mut lay)
         } else {
-            newton_euler::section(der, frame, &mut lay, &tidied)
+            newton_euler::section(der, frame, &mut lay, &mut tidied)
         });
     }
     match proofs() {

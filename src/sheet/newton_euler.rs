@@ -2,7 +2,7 @@
 //! (`ω_i`, `α_i`, `a_c,i`, `a_e,i`, `g_i`), the backward recursion (`f_i`, `n_i`), the actuated forces
 //! and torques, and the equations.
 
-use super::layout::Layout;
+use super::layout::{Layout, Prepared};
 use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Poly};
 use crate::dynamics::vec3::Vec3;
@@ -25,7 +25,7 @@ const MAX_TERMS: usize = 1000;
 /// and the vectors are independent, so they are tidied on several threads
 /// ([`crate::print::parallel::map`]); the layout, which numbers abbreviations, stays in order.
 #[derive(Default)]
-pub(super) struct Tidied(HashMap<(Frame, String), Vec<Expr>>);
+pub(super) struct Tidied(HashMap<(Frame, String), Vec<Prepared>>);
 
 /// The vectors a section prints for `frame`, with their names, in order.
 fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
@@ -68,8 +68,8 @@ pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
         100_000,
         |(_, _, v)| {
             v.0.iter()
-                .map(|c| c.tidy_by(Grouping::Leading))
-                .collect::<Vec<Expr>>()
+                .map(|c| Prepared::new(c.tidy_by(Grouping::Leading)))
+                .collect::<Vec<Prepared>>()
         },
     );
     Tidied(
@@ -87,7 +87,13 @@ fn longest(v: &Vec3<Poly>) -> usize {
 
 /// `name` as a vector display, components `(name)_x` … when too wide, or its length when too long;
 /// its display form from `tidied` when there (else tidied here).
-fn vector(lay: &mut Layout, tidied: &Tidied, frame: Frame, name: &str, v: &Vec3<Poly>) -> String {
+fn vector(
+    lay: &mut Layout,
+    tidied: &mut Tidied,
+    frame: Frame,
+    name: &str,
+    v: &Vec3<Poly>,
+) -> String {
     if longest(v) > MAX_TERMS {
         let sizes: Vec<String> = v.0.iter().map(|c| c.len().to_string()).collect();
         return format!(
@@ -97,8 +103,8 @@ fn vector(lay: &mut Layout, tidied: &Tidied, frame: Frame, name: &str, v: &Vec3<
     }
     let base = name.to_string();
     let component = move |k: usize| format!("({base})_{{{}}}", ["x", "y", "z"][k]);
-    match tidied.0.get(&(frame, name.to_string())) {
-        Some(shown) => lay.vector_shown(name, shown, &component),
+    match tidied.0.remove(&(frame, name.to_string())) {
+        Some(shown) => lay.vector_prepared(name, shown, &component),
         None => lay.vector(name, &v.0, &component, Grouping::Leading),
     }
 }
@@ -123,7 +129,12 @@ fn moment_formula(convention: Convention) -> &'static str {
 }
 
 /// The section for `frame`.
-pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout, tidied: &Tidied) -> String {
+pub(super) fn section(
+    der: &Derivation,
+    frame: Frame,
+    lay: &mut Layout,
+    tidied: &mut Tidied,
+) -> String {
     let robot = der.robot();
     let n = robot.dof();
     let ne = der.newton_euler(frame);
