@@ -4,8 +4,7 @@
 mod cli;
 
 /// The derivations allocate and free many small nodes (terms, monomials, strings); mimalloc serves
-/// them faster than the system allocator and returns less memory to the OS mid-run (built without
-/// transparent huge pages, see Cargo.toml).
+/// them faster than the system allocator and returns less memory to the OS mid-run (see Cargo.toml).
 #[global_allocator]
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
