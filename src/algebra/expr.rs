@@ -30,7 +30,6 @@ use super::trig_values;
 use num_bigint::BigInt;
 use num_traits::{One, Signed, ToPrimitive};
 use std::cmp::Ordering;
-use std::collections::BTreeMap;
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 
@@ -360,7 +359,8 @@ impl Expr {
     /// The canonical product of the given expressions.
     pub fn product<I: IntoIterator<Item = Expr>>(items: I) -> Expr {
         let mut coeff = Rational::one();
-        let mut bases: BTreeMap<Expr, i64> = BTreeMap::new();
+        // Every (base, exponent), then sorted by base and merged (as an ordered map would, cheaper).
+        let mut all: Vec<(Expr, i64)> = Vec::new();
         for item in items {
             match item.kind() {
                 Kind::Num(r) => coeff = &coeff * r,
@@ -371,17 +371,25 @@ impl Expr {
                         if !content.is_one() {
                             coeff = &coeff * &content.pow(*k).expect("non-zero content");
                         }
-                        *bases.entry(b).or_insert(0) += k;
+                        all.push((b, *k));
                     }
                 }
                 _ => {
                     let (b, content) = primitive_base(&item);
                     coeff = &coeff * &content;
-                    *bases.entry(b).or_insert(0) += 1
+                    all.push((b, 1));
                 }
             }
             if coeff.is_zero() {
                 return Expr::zero();
+            }
+        }
+        all.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut bases: Vec<(Expr, i64)> = Vec::with_capacity(all.len());
+        for (b, k) in all {
+            match bases.last_mut() {
+                Some((last, e)) if (*last).cmp(&b) == std::cmp::Ordering::Equal => *e += k,
+                _ => bases.push((b, k)),
             }
         }
         // Square roots: sqrt(k)^e = k^floor(e/2) sqrt(k)^(e mod 2); the odd ones multiply into one radicand.
