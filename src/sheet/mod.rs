@@ -112,9 +112,14 @@ const NOTATION: &str = "%%NOTATION%%\n";
 /// The complete LaTeX document of the solution sheet of `der`.
 pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // The proofs of the last section take about as long as all the others on a large robot, and
-    // depend on nothing they print: they run on a thread of their own meanwhile.
+    // depend on nothing they print: they run on a thread of their own meanwhile (unless the display
+    // layer is held to one thread, `print::parallel::set_threads`).
+    let full = opts.scope == Scope::Full;
+    if crate::print::parallel::threads() < 2 {
+        return document(der, opts, || full.then(|| agreement(der)));
+    }
     std::thread::scope(|scope| {
-        let proofs = (opts.scope == Scope::Full).then(|| scope.spawn(|| agreement(der)));
+        let proofs = full.then(|| scope.spawn(|| agreement(der)));
         let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
         document(der, opts, proofs)
     })
