@@ -8,8 +8,14 @@ use std::process::Command;
 use symdyn::parse::parse_expr;
 
 fn symdyn(args: &[&str]) -> (String, String, i32) {
+    symdyn_with(&[], args)
+}
+
+/// `symdyn` with environment variables set: stdout, stderr and the exit code.
+fn symdyn_with(env: &[(&str, &str)], args: &[&str]) -> (String, String, i32) {
     let out = Command::new(env!("CARGO_BIN_EXE_symdyn"))
         .args(args)
+        .envs(env.iter().copied())
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("the binary runs");
@@ -257,17 +263,7 @@ fn threaded_left_sides_print_as_each_alone() {
 
 /// `symdyn` with `SYMDYN_THREADS` set.
 fn symdyn_threads(threads: &str, args: &[&str]) -> (String, String, i32) {
-    let out = Command::new(env!("CARGO_BIN_EXE_symdyn"))
-        .args(args)
-        .env("SYMDYN_THREADS", threads)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    (
-        String::from_utf8(out.stdout).expect("utf-8"),
-        String::from_utf8(out.stderr).expect("utf-8"),
-        out.status.code().unwrap_or(-1),
-    )
+    symdyn_with(&[("SYMDYN_THREADS", threads)], args)
 }
 
 /// Sheets tidy their Newton–Euler vectors and prove the agreement on several threads, and `derive`

@@ -384,7 +384,7 @@ mod tests {
 
     #[test]
     fn many_terms_print_the_same_on_several_threads() {
-        // Past PARALLEL_TERMS in all, chunks go to threads: the strings must come back in order,
+        // Past PARALLEL_TERMS in all, the polynomials go to threads: the strings must come back in order,
         // each as one renderer on one thread prints it.
         let ps: Vec<Poly> = (1..=12)
             .map(|k| {
