@@ -76,23 +76,31 @@ fn shown_width(body: &Body, cap: usize) -> usize {
             after,
             ..
         } => {
-            // `\left(` and `\right)` are one unit each; every sign two.
-            let mut w = width(before) + width(after) + 2;
-            if inner.is_empty() {
-                return w + 1;
-            }
-            for (i, t) in inner.iter().enumerate() {
-                if w > cap {
-                    break;
-                }
-                if i > 0 || t.negative {
-                    w += 2;
-                }
-                w += shown_width(&t.body, cap.saturating_sub(w));
-            }
-            w
+            // `\left(` and `\right)` are one unit each.
+            let w = width(before) + width(after) + 2;
+            w + sum_width(inner, cap.saturating_sub(w))
         }
     }
+}
+
+/// The [`width`] of display terms joined into a sum ([`print::equation::join`]; `0` when there are
+/// none), counted only until it passes `cap` as [`shown_width`] is.
+fn sum_width(terms: &[Shown], cap: usize) -> usize {
+    if terms.is_empty() {
+        return 1;
+    }
+    let mut w = 0;
+    for (i, t) in terms.iter().enumerate() {
+        if w > cap {
+            break;
+        }
+        // Every sign is two units.
+        if i > 0 || t.negative {
+            w += 2;
+        }
+        w += shown_width(&t.body, cap.saturating_sub(w));
+    }
+    w
 }
 
 /// Lays out display math; numbers the abbreviations it introduces across one document.
@@ -117,19 +125,7 @@ impl Side {
     fn width_at_most(&self, cap: usize) -> usize {
         match self {
             Side::Terms(_) => width(&self.latex()),
-            Side::Shown(shown) => {
-                let mut w = 0;
-                for (i, t) in shown.iter().enumerate() {
-                    if w > cap {
-                        break;
-                    }
-                    if i > 0 || t.negative {
-                        w += 2;
-                    }
-                    w += shown_width(&t.body, cap.saturating_sub(w));
-                }
-                w.max(usize::from(shown.is_empty()))
-            }
+            Side::Shown(shown) => sum_width(shown, cap),
         }
     }
 
