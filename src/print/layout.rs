@@ -154,31 +154,44 @@ fn flat_terms(terms: &[Expr]) -> Vec<Expr> {
         .collect()
 }
 
-/// An expression in its display form, printed ahead of the layout: its LaTeX and each of its terms'
-/// (what [`Layout::vector_prepared`] measures and lays out). Preparing is pure, so it may run on any
-/// thread; only the layout, which numbers abbreviations, runs in order.
-#[derive(Clone, Debug)]
-pub struct Prepared {
-    /// The expression.
-    pub expr: Expr,
-    /// Its LaTeX.
-    latex: String,
-    /// Its terms with their LaTeX ([`term_string`]).
-    terms: Vec<(Expr, String)>,
+/// Terms with their LaTeX ([`term_string`]), as [`Layout::lines`] lays them out.
+fn printed(terms: Vec<Expr>) -> Vec<(Expr, String)> {
+    terms
+        .into_iter()
+        .map(|t| {
+            let s = term_string(&t);
+            (t, s)
+        })
+        .collect()
 }
 
-impl Prepared {
-    /// `expr` printed, whole and term by term.
-    pub fn new(expr: Expr) -> Prepared {
-        let latex = print::to_string(&expr, Style::Latex);
-        let terms = flat_terms(std::slice::from_ref(&expr))
-            .into_iter()
-            .map(|t| {
-                let s = term_string(&t);
-                (t, s)
-            })
-            .collect();
-        Prepared { expr, latex, terms }
+/// A vector's components in their display form, printed ahead of the layout: measured whole, and
+/// printed term by term when the vector is too wide for one line (what [`Layout::vector_prepared`]
+/// then lays out). Preparing is pure, so it may run on any thread; only the layout, which numbers
+/// abbreviations, runs in order.
+#[derive(Clone, Debug)]
+pub struct PreparedVector {
+    /// The components.
+    shown: Vec<Expr>,
+    /// Each component's terms with their LaTeX, when the vector is laid out component by component.
+    terms: Option<Vec<Vec<(Expr, String)>>>,
+}
+
+impl PreparedVector {
+    /// `lhs = shown` prepared: one line if it fits, else each component term by term.
+    pub fn new(lhs: &str, shown: Vec<Expr>) -> PreparedVector {
+        let widest = shown
+            .iter()
+            .map(|e| width(&print::to_string(e, Style::Latex)))
+            .max()
+            .unwrap_or(0);
+        let terms = (width(lhs) + 6 + widest > BUDGET).then(|| {
+            shown
+                .iter()
+                .map(|e| printed(flat_terms(std::slice::from_ref(e))))
+                .collect()
+        });
+        PreparedVector { shown, terms }
     }
 }
 
@@ -198,14 +211,7 @@ impl Layout {
     /// across `align*` lines when too long. A term too wide for a line has its widest sum factor
     /// replaced by an abbreviation, which is given after the equation.
     pub fn terms(&mut self, lhs: Option<&str>, terms: &[Expr], rhs: Option<&str>) -> String {
-        let printed = flat_terms(terms)
-            .into_iter()
-            .map(|t| {
-                let s = term_string(&t);
-                (t, s)
-            })
-            .collect();
-        self.printed_terms(lhs, printed, rhs)
+        self.printed_terms(lhs, printed(flat_terms(terms)), rhs)
     }
 
     /// [`Layout::terms`] of terms already printed (each with its [`term_string`]).
@@ -343,14 +349,7 @@ impl Layout {
         let lines = match side {
             Side::Terms(terms) => {
                 let mut exprs = Vec::new();
-                let printed = flat_terms(&terms)
-                    .into_iter()
-                    .map(|t| {
-                        let s = term_string(&t);
-                        (t, s)
-                    })
-                    .collect();
-                let lines = self.lines(printed, room, &mut exprs);
+                let lines = self.lines(printed(flat_terms(&terms)), room, &mut exprs);
                 later.extend(exprs.into_iter().map(|(n, e)| (n, Side::Terms(vec![e]))));
                 lines
             }
@@ -551,39 +550,26 @@ impl Layout {
         grouping: Grouping,
     ) -> String {
         let shown: Vec<Expr> = v.iter().map(|e| e.tidy_by(grouping)).collect();
-        self.vector_shown(lhs, &shown, component)
-    }
-
-    /// [`Layout::vector`] of components already in their display form.
-    pub fn vector_shown(
-        &mut self,
-        lhs: &str,
-        shown: &[Expr],
-        component: &dyn Fn(usize) -> String,
-    ) -> String {
-        let prepared: Vec<Prepared> = shown.iter().cloned().map(Prepared::new).collect();
-        self.vector_prepared(lhs, prepared, component)
+        self.vector_prepared(lhs, PreparedVector::new(lhs, shown), component)
     }
 
     /// [`Layout::vector`] of components already in their display form and printed
-    /// ([`Prepared`]).
+    /// ([`PreparedVector`]).
     pub fn vector_prepared(
         &mut self,
         lhs: &str,
-        prepared: Vec<Prepared>,
+        prepared: PreparedVector,
         component: &dyn Fn(usize) -> String,
     ) -> String {
-        let widest = prepared.iter().map(|p| width(&p.latex)).max().unwrap_or(0);
-        if width(lhs) + 6 + widest <= BUDGET {
-            let shown: Vec<Expr> = prepared.into_iter().map(|p| p.expr).collect();
+        let Some(terms) = prepared.terms else {
             return format!(
                 "\\[ {lhs} = {} \\]\n",
-                print::vector_to_string(&shown, Style::Latex)
+                print::vector_to_string(&prepared.shown, Style::Latex)
             );
-        }
+        };
         let mut out = String::new();
-        for (k, p) in prepared.into_iter().enumerate() {
-            out.push_str(&self.printed_terms(Some(&component(k)), p.terms, None));
+        for (k, t) in terms.into_iter().enumerate() {
+            out.push_str(&self.printed_terms(Some(&component(k)), t, None));
         }
         out
     }

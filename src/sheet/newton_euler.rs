@@ -2,7 +2,7 @@
 //! (`ω_i`, `α_i`, `a_c,i`, `a_e,i`, `g_i`), the backward recursion (`f_i`, `n_i`), the actuated forces
 //! and torques, and the equations.
 
-use super::layout::{Layout, Prepared};
+use super::layout::{Layout, PreparedVector};
 use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Poly};
 use crate::dynamics::vec3::Vec3;
@@ -25,7 +25,7 @@ const MAX_TERMS: usize = 1000;
 /// and the vectors are independent, so they are tidied on several threads
 /// ([`crate::print::parallel::map`]); the layout, which numbers abbreviations, stays in order.
 #[derive(Default)]
-pub(super) struct Tidied(HashMap<(Frame, String), Vec<Prepared>>);
+pub(super) struct Tidied(HashMap<(Frame, String), PreparedVector>);
 
 /// The vectors a section prints for `frame`, with their names, in order.
 fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
@@ -66,10 +66,9 @@ pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
         &jobs,
         |(_, _, v)| v.0.iter().map(|c| c.len() * c.len()).sum(),
         100_000,
-        |(_, _, v)| {
-            v.0.iter()
-                .map(|c| Prepared::new(c.tidy_by(Grouping::Leading)))
-                .collect::<Vec<Prepared>>()
+        |(_, name, v)| {
+            let shown = v.0.iter().map(|c| c.tidy_by(Grouping::Leading)).collect();
+            PreparedVector::new(name, shown)
         },
     );
     Tidied(
