@@ -225,6 +225,13 @@ pub fn symbol_of(id: AtomId) -> Option<Symbol> {
     }
 }
 
+/// A small index of an id, distinct for distinct ids: the serial number (dense over the atoms
+/// interned so far, and shared by a symbol and its sine and cosine) times 16, plus the class, so
+/// tables of atoms can be indexed by it.
+pub fn dense_index(id: AtomId) -> usize {
+    (((id & SERIAL) as usize) << (32 - SHIFT)) | (id >> SHIFT) as usize
+}
+
 /// What an id stands for (for `Sin`/`Cos` ids: the angle's symbol).
 pub fn lookup(id: AtomId) -> Atom {
     INTERNER.read().expect("interner lock").atoms[(id & SERIAL) as usize].clone()
@@ -260,4 +267,20 @@ fn angle(x: &Symbol, over: u64) -> Expr {
 fn pi_over(l: u64) -> Expr {
     let over = Rational::from(num_bigint::BigInt::from(l));
     Expr::pi().scale(&over.recip().expect("L >= 1"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dense_indices_tell_a_symbol_from_its_sine_and_cosine() {
+        // sin(q1), cos(q1) and q1 share a serial number; their dense indices must still differ.
+        let q = Symbol::q(1);
+        let ids = [sym(&q), sin(&q), cos(&q), sym(&Symbol::new("m1"))];
+        let mut idx: Vec<usize> = ids.iter().map(|&id| dense_index(id)).collect();
+        idx.sort_unstable();
+        idx.dedup();
+        assert_eq!(idx.len(), ids.len());
+    }
 }

@@ -138,106 +138,154 @@ fn write_terms(out: &mut String, terms: &[Shown], nested: bool) {
     }
 }
 
-/// Where a term's factor goes: into the key (`q̈_j`, `q̇_i`, or for the rest its trig monomial) or the
-/// coefficient.
-fn key_class(id: AtomId, stage: u8) -> bool {
-    match (stage, atom::class(id)) {
-        (0, Class::Coord) => matches!(atom::symbol_of(id), Some(Symbol::Coord { order: 2, .. })),
-        (1, Class::Coord) => matches!(atom::symbol_of(id), Some(Symbol::Coord { order: 1, .. })),
-        (2, Class::Sin | Class::Cos) => true,
-        _ => false,
+/// What a ranked atom is to the layout of an equation side: an acceleration `q̈_j` or a rate `q̇_i`
+/// (keys of the first two stages), a sine or cosine (keys of the rest), a parameter (the lead of a
+/// coefficient's group), or anything else. Read once per rank, so no term looks an atom up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Role {
+    Acceleration,
+    Rate,
+    Trig,
+    Param,
+    Other,
+}
+
+/// The role of an atom.
+fn role(id: AtomId) -> Role {
+    match atom::class(id) {
+        Class::Coord => match atom::symbol_of(id) {
+            Some(Symbol::Coord { order: 2, .. }) => Role::Acceleration,
+            Some(Symbol::Coord { order: 1, .. }) => Role::Rate,
+            _ => Role::Other,
+        },
+        Class::Sin | Class::Cos => Role::Trig,
+        Class::Param => Role::Param,
+        _ => Role::Other,
     }
 }
 
 /// A term split by rank: (rank, exponent) factors, sorted.
 type Factors = Vec<(u32, i32)>;
 
-/// Terms of a sum: factors and coefficient.
-type Terms = Vec<(Factors, Rational)>;
+/// One term of a side, its factors in a buffer shared by all terms: `key` factors first (the
+/// accelerations, the rates, or the trig factors, by `stage`), then the coefficient's, each part
+/// sorted by rank.
+struct Split<'p> {
+    stage: u8,
+    start: u32,
+    mid: u32,
+    end: u32,
+    coeff: &'p Rational,
+}
 
 /// The display terms of an equation side, or `None` if an atom of `p` is outside the plain class
 /// (the caller then takes the canonical route).
+///
+/// A term goes to the first stage whose key atoms it has: its accelerations (stage 0), else its
+/// rates (stage 1), else its trig factors (stage 2, possibly none). Terms of one key share a display
+/// term, keys in order within a stage ([`shown`] lays out each).
 pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
     let ranks = Ranks::of([p])?;
-    let mut r = Renderer::new(&ranks, style);
-    let terms: Vec<(Factors, Rational)> = p
-        .terms()
-        .iter()
-        .map(|(m, c)| {
-            let mut f: Factors = m
-                .factors()
-                .iter()
-                .map(|&(id, e)| (ranks.rank(id), e))
-                .collect();
-            f.sort_unstable_by_key(|&(r, _)| r);
-            (f, c.clone())
-        })
+    let roles: Vec<Role> = (0..ranks.len() as u32)
+        .map(|r| role(ranks.atom(r)))
         .collect();
-    let is_key = |stage: u8, r: u32| key_class(ranks.atom(r), stage);
+    let mut r = Renderer::new(&ranks, style);
+    let mut buf: Vec<(u32, i32)> =
+        Vec::with_capacity(p.terms().iter().map(|(m, _)| m.factors().len()).sum());
+    let mut splits: Vec<Split> = Vec::with_capacity(p.len());
+    let mut scratch: Factors = Vec::new();
+    for (m, c) in p.terms() {
+        scratch.clear();
+        scratch.extend(m.factors().iter().map(|&(id, e)| (ranks.rank(id), e)));
+        scratch.sort_unstable_by_key(|&(r, _)| r);
+        let has = |want: Role| scratch.iter().any(|&(r, _)| roles[r as usize] == want);
+        let (stage, key) = if has(Role::Acceleration) {
+            (0, Role::Acceleration)
+        } else if has(Role::Rate) {
+            (1, Role::Rate)
+        } else {
+            (2, Role::Trig)
+        };
+        let start = buf.len() as u32;
+        buf.extend(scratch.iter().filter(|&&(r, _)| roles[r as usize] == key));
+        let mid = buf.len() as u32;
+        buf.extend(scratch.iter().filter(|&&(r, _)| roles[r as usize] != key));
+        splits.push(Split {
+            stage,
+            start,
+            mid,
+            end: buf.len() as u32,
+            coeff: c,
+        });
+    }
+    // key → the terms with it, and each stage's keys in first-seen order (sorted below).
+    let mut groups: FxHashMap<&[(u32, i32)], Vec<u32>> = FxHashMap::default();
+    let mut keys: [Vec<&[(u32, i32)]>; 3] = Default::default();
+    for (i, t) in splits.iter().enumerate() {
+        let key = &buf[t.start as usize..t.mid as usize];
+        groups
+            .entry(key)
+            .or_insert_with(|| {
+                keys[t.stage as usize].push(key);
+                Vec::new()
+            })
+            .push(i as u32);
+    }
+    // q̈ by coordinate index, q̇ products in canonical order (both are ranked by it); the rest:
+    // simpler trig monomials first (fewer trig factors), then canonical order.
+    keys[0].sort_by(|a, b| super::poly::cmp_factor_lists(a, b));
+    keys[1].sort_by(|a, b| super::poly::cmp_factor_lists(a, b));
+    keys[2].sort_by(|a, b| {
+        trig_size(a)
+            .cmp(&trig_size(b))
+            .then_with(|| super::poly::cmp_factor_lists(a, b))
+    });
     let mut out = Vec::new();
-    let mut rest: Vec<(Factors, Rational)> = terms;
-    for stage in 0..3u8 {
-        // key factors → (coefficient terms)
-        let mut groups: FxHashMap<Factors, Vec<(Factors, Rational)>> = FxHashMap::default();
-        let mut left = Vec::new();
-        for (f, c) in rest {
-            let (key, coeff): (Factors, Factors) = f.iter().partition(|&&(r, _)| is_key(stage, r));
-            if key.is_empty() && stage < 2 {
-                left.push((f, c));
-            } else {
-                groups.entry(key).or_default().push((coeff, c));
-            }
-        }
-        let mut keys: Vec<Factors> = groups.keys().cloned().collect();
-        match stage {
-            // q̈ by coordinate index, q̇ products in canonical order (both are ranked by it).
-            0 | 1 => keys.sort_by(|a, b| super::poly::cmp_factor_lists(a, b)),
-            // The rest: simpler trig monomials first (fewer trig factors), then canonical order; the
-            // part without trig last but one? As in the canonical display: no trig first.
-            _ => keys.sort_by(|a, b| {
-                trig_size(a)
-                    .cmp(&trig_size(b))
-                    .then_with(|| super::poly::cmp_factor_lists(a, b))
-            }),
-        }
-        for key in keys {
-            let coeff = groups.remove(&key).expect("a key of the map");
-            out.extend(shown(&mut r, coeff, &key, style));
-        }
-        rest = left;
+    for key in keys.iter().flatten() {
+        let coeff: Vec<Coefficient> = groups[key]
+            .iter()
+            .map(|&i| {
+                let t = &splits[i as usize];
+                (&buf[t.mid as usize..t.end as usize], t.coeff)
+            })
+            .collect();
+        out.extend(shown(&mut r, &roles, coeff, key, style));
     }
     Some(out)
 }
 
 /// The number of trig factors of a key (with multiplicity).
-fn trig_size(key: &Factors) -> i32 {
+fn trig_size(key: &[(u32, i32)]) -> i32 {
     key.iter().map(|&(_, e)| e).sum()
 }
+
+/// A coefficient's term: its factors (sorted by rank) and its number.
+type Coefficient<'a> = (&'a [(u32, i32)], &'a Rational);
 
 /// The display terms of `coefficient · key`: one product when the coefficient is a single term,
 /// else the coefficient grouped by leading parameter in parentheses, then the key.
 fn shown(
     r: &mut Renderer,
-    mut coeff: Vec<(Factors, Rational)>,
-    key: &Factors,
+    roles: &[Role],
+    mut coeff: Vec<Coefficient>,
+    key: &[(u32, i32)],
     style: Style,
 ) -> Vec<Shown> {
     coeff.retain(|(_, c)| !c.is_zero());
-    coeff.sort_by(|a, b| super::poly::cmp_factor_lists(&a.0, &b.0));
     if coeff.is_empty() {
         return vec![];
     }
     if key.is_empty() {
         // The terms without key atoms at the last stage: grouped, without parentheses.
-        return grouped(r, &coeff, style);
+        return grouped(r, roles, &coeff, style);
     }
     if let [(f, c)] = coeff.as_slice() {
-        let mut all = f.clone();
+        let mut all: Factors = f.to_vec();
         all.extend(key.iter().copied());
         all.sort_unstable_by_key(|&(r, _)| r);
         return vec![product(r, c, &all)];
     }
-    let inner = grouped(r, &coeff, style);
+    let inner = grouped(r, roles, &coeff, style);
     let after = product(r, &Rational::one(), key).body.text();
     vec![Shown {
         negative: false,
@@ -250,54 +298,51 @@ fn shown(
     }]
 }
 
-/// Terms grouped by their leading parameter (the first parameter factor in canonical order, with
-/// its power): `m2 (l1^2 + lc2^2) + I2`.
-fn grouped(r: &mut Renderer, terms: &[(Factors, Rational)], style: Style) -> Vec<Shown> {
-    let ranks = r.ranks();
-    let lead_of = |f: &Factors| -> Option<(u32, i32)> {
-        f.iter()
-            .copied()
-            .find(|&(r, _)| atom::class(ranks.atom(r)) == Class::Param)
-    };
-    let mut order: Vec<Option<(u32, i32)>> = Vec::new();
-    let mut groups: FxHashMap<Option<(u32, i32)>, Terms> = FxHashMap::default();
-    for (f, c) in terms {
-        let lead = lead_of(f);
-        let rest: Factors = match lead {
-            Some(l) => f.iter().copied().filter(|&x| x != l).collect(),
-            None => f.clone(),
-        };
-        let g = groups.entry(lead).or_insert_with(|| {
-            order.push(lead);
-            Vec::new()
-        });
-        g.push((rest, c.clone()));
-    }
-    // Groups in the canonical order of their keys, the group without a parameter last.
-    order.sort_by(|a, b| match (a, b) {
-        (Some(x), Some(y)) => super::poly::cmp_factor_lists(&[*x], &[*y]),
+/// Leads in the canonical order of products (rank, then the higher power first), no lead last.
+fn cmp_leads(a: Option<(u32, i32)>, b: Option<(u32, i32)>) -> std::cmp::Ordering {
+    match (a, b) {
+        (Some(x), Some(y)) => super::poly::cmp_factor_lists(&[x], &[y]),
         (Some(_), None) => std::cmp::Ordering::Less,
         (None, Some(_)) => std::cmp::Ordering::Greater,
         (None, None) => std::cmp::Ordering::Equal,
+    }
+}
+
+/// Terms grouped by their leading parameter (the first parameter factor in canonical order, with
+/// its power): `m2 (l1^2 + lc2^2) + I2`. Groups in the order of their leads, the terms without a
+/// parameter last; within a group, the terms in the canonical order of what is left of them.
+fn grouped(r: &mut Renderer, roles: &[Role], terms: &[Coefficient], style: Style) -> Vec<Shown> {
+    // (lead, the rest's range in `rest`, the term's index), sorted by lead, then by the rest.
+    let mut rest: Factors = Vec::with_capacity(terms.iter().map(|(f, _)| f.len()).sum());
+    let mut entries: Vec<(Option<(u32, i32)>, usize, usize, usize)> =
+        Vec::with_capacity(terms.len());
+    for (i, (f, _)) in terms.iter().enumerate() {
+        let lead = f
+            .iter()
+            .copied()
+            .find(|&(r, _)| roles[r as usize] == Role::Param);
+        let start = rest.len();
+        rest.extend(f.iter().copied().filter(|&x| Some(x) != lead));
+        entries.push((lead, start, rest.len(), i));
+    }
+    entries.sort_by(|a, b| {
+        cmp_leads(a.0, b.0)
+            .then_with(|| super::poly::cmp_factor_lists(&rest[a.1..a.2], &rest[b.1..b.2]))
     });
     let mut out = Vec::new();
-    for lead in order {
-        let mut g = groups.remove(&lead).expect("a group");
-        match (lead, g.len()) {
-            (None, _) => {
-                g.sort_by(|a, b| super::poly::cmp_factor_lists(&a.0, &b.0));
-                out.extend(g.iter().map(|(f, c)| product(r, c, f)));
-            }
-            (Some(l), 1) => {
-                let (f, c) = &g[0];
-                let mut all = f.clone();
-                all.push(l);
-                all.sort_unstable_by_key(|&(r, _)| r);
-                out.push(product(r, c, &all));
-            }
+    for run in entries.chunk_by(|a, b| a.0 == b.0) {
+        match (run[0].0, run.len()) {
+            (None, _) => out.extend(
+                run.iter()
+                    .map(|&(_, s, e, i)| product(r, terms[i].1, &rest[s..e])),
+            ),
+            // The lead and the rest are the term's own factors.
+            (Some(_), 1) => out.push(product(r, terms[run[0].3].1, terms[run[0].3].0)),
             (Some(l), _) => {
-                g.sort_by(|a, b| super::poly::cmp_factor_lists(&a.0, &b.0));
-                let inner: Vec<Shown> = g.iter().map(|(f, c)| product(r, c, f)).collect();
+                let inner: Vec<Shown> = run
+                    .iter()
+                    .map(|&(_, s, e, i)| product(r, terms[i].1, &rest[s..e]))
+                    .collect();
                 let before = product(r, &Rational::one(), &[l]).body.text();
                 out.push(Shown {
                     negative: false,

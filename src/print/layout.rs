@@ -20,6 +20,32 @@ pub const LINE_WIDTH: usize = 66;
 /// The internal name of [`LINE_WIDTH`].
 const BUDGET: usize = LINE_WIDTH;
 
+/// The width of each byte outside a command name: `+`, `-`, `=` are 2 (with their spacing), braces,
+/// `^`, `_`, spaces, `&` and the continuation bytes of a multi-byte character 0, anything else 1;
+/// [`COMMAND`] marks the backslash.
+const BYTE_WIDTH: [u8; 256] = {
+    let mut t = [1u8; 256];
+    let mut b = 0x80;
+    while b < 0xC0 {
+        t[b] = 0;
+        b += 1;
+    }
+    t[b'{' as usize] = 0;
+    t[b'}' as usize] = 0;
+    t[b'^' as usize] = 0;
+    t[b'_' as usize] = 0;
+    t[b' ' as usize] = 0;
+    t[b'&' as usize] = 0;
+    t[b'+' as usize] = 2;
+    t[b'-' as usize] = 2;
+    t[b'=' as usize] = 2;
+    t[b'\\' as usize] = COMMAND;
+    t
+};
+
+/// [`BYTE_WIDTH`]'s mark of the byte that starts a command.
+const COMMAND: u8 = u8::MAX;
+
 /// The estimated printed width of LaTeX math source. Read byte by byte: every byte that starts a
 /// character counts as that character (commands are ASCII; any other character is one unit).
 pub fn width(latex: &str) -> usize {
@@ -27,38 +53,33 @@ pub fn width(latex: &str) -> usize {
     let mut w = 0;
     let mut i = 0;
     while i < bytes.len() {
-        let c = bytes[i];
+        let c = BYTE_WIDTH[bytes[i] as usize];
         i += 1;
-        match c {
-            b'\\' => {
-                // The command's name, as a slice of the source (no allocation).
-                let start = i;
-                while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
-                    i += 1;
-                }
-                if i == start {
-                    // `\\`, `\,`, `\{`: a control symbol (its continuation bytes, if any, count
-                    // nothing below).
-                    if let Some(&n) = bytes.get(i) {
-                        w += usize::from(n == b'{' || n == b'}');
-                        i += 1;
-                    }
-                    continue;
-                }
-                w += match &bytes[start..i] {
-                    b"sin" | b"cos" | b"tan" => 3,
-                    b"quad" => 2,
-                    b"frac" | b"left" | b"right" | b"dot" | b"ddot" | b"dddot" | b"ddddot"
-                    | b"mathrm" | b"begin" | b"end" | b"bmatrix" | b"sqrt" => 0,
-                    _ => 1,
-                };
-            }
-            b'{' | b'}' | b'^' | b'_' | b' ' | b'&' => {}
-            b'+' | b'-' | b'=' => w += 2,
-            // A continuation byte of a multi-byte character.
-            _ if c & 0xC0 == 0x80 => {}
-            _ => w += 1,
+        if c != COMMAND {
+            w += c as usize;
+            continue;
         }
+        // The command's name, as a slice of the source (no allocation).
+        let start = i;
+        while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
+            i += 1;
+        }
+        if i == start {
+            // `\\`, `\,`, `\{`: a control symbol (its continuation bytes, if any, count nothing
+            // below).
+            if let Some(&n) = bytes.get(i) {
+                w += usize::from(n == b'{' || n == b'}');
+                i += 1;
+            }
+            continue;
+        }
+        w += match &bytes[start..i] {
+            b"sin" | b"cos" | b"tan" => 3,
+            b"quad" => 2,
+            b"frac" | b"left" | b"right" | b"dot" | b"ddot" | b"dddot" | b"ddddot" | b"mathrm"
+            | b"begin" | b"end" | b"bmatrix" | b"sqrt" => 0,
+            _ => 1,
+        };
     }
     w
 }

@@ -11,14 +11,13 @@
 
 use super::{latex, text, Piece, Product, Style};
 use crate::algebra::atom::{self, AtomId, Class};
-use crate::algebra::fast_hash::{FxHashMap, FxHashSet};
 use crate::algebra::{Expr, Poly, Rational};
 use std::cmp::Ordering;
 
 /// The atoms of some polynomials, ranked by the canonical order of their bases.
 pub struct Ranks {
-    /// Atom id → rank.
-    of: FxHashMap<AtomId, u32>,
+    /// Atom index ([`atom::dense_index`]) → rank (`u32::MAX` for atoms not ranked).
+    of: Vec<u32>,
     /// The base of each rank.
     bases: Vec<Expr>,
     /// The atom of each rank.
@@ -39,14 +38,23 @@ fn plain(id: AtomId) -> bool {
 impl Ranks {
     /// Ranks for the atoms of `polys`, or `None` if one of them is not plain.
     pub fn of<'a, I: IntoIterator<Item = &'a Poly>>(polys: I) -> Option<Ranks> {
-        // The distinct atoms (a few dozen, among many more factors).
-        let mut seen: FxHashSet<AtomId> = FxHashSet::default();
+        // The distinct atoms (a few dozen, among many more factors), marked by index.
+        let mut seen: Vec<bool> = Vec::new();
+        let mut ids: Vec<AtomId> = Vec::new();
         for p in polys {
             for (m, _) in p.terms() {
-                seen.extend(m.factors().iter().map(|&(id, _)| id));
+                for &(id, _) in m.factors() {
+                    let s = atom::dense_index(id);
+                    if s >= seen.len() {
+                        seen.resize(s + 1, false);
+                    }
+                    if !seen[s] {
+                        seen[s] = true;
+                        ids.push(id);
+                    }
+                }
             }
         }
-        let mut ids: Vec<AtomId> = seen.into_iter().collect();
         ids.sort_unstable();
         if !ids.iter().all(|&id| plain(id)) {
             return None;
@@ -54,12 +62,12 @@ impl Ranks {
         let mut bases: Vec<(AtomId, Expr)> =
             ids.into_iter().map(|id| (id, atom::to_expr(id))).collect();
         bases.sort_by(|a, b| a.1.cmp(&b.1));
+        let mut of = vec![u32::MAX; seen.len()];
+        for (r, (id, _)) in bases.iter().enumerate() {
+            of[atom::dense_index(*id)] = r as u32;
+        }
         Some(Ranks {
-            of: bases
-                .iter()
-                .enumerate()
-                .map(|(r, (id, _))| (*id, r as u32))
-                .collect(),
+            of,
             atoms: bases.iter().map(|(id, _)| *id).collect(),
             bases: bases.into_iter().map(|(_, e)| e).collect(),
         })
@@ -67,7 +75,19 @@ impl Ranks {
 
     /// The rank of an atom of the ranked polynomials.
     pub fn rank(&self, id: AtomId) -> u32 {
-        self.of[&id]
+        let r = self.of[atom::dense_index(id)];
+        debug_assert!(r != u32::MAX, "an atom of the ranked polynomials");
+        r
+    }
+
+    /// The number of ranked atoms.
+    pub fn len(&self) -> usize {
+        self.atoms.len()
+    }
+
+    /// Whether no atom is ranked (the polynomials are constants).
+    pub fn is_empty(&self) -> bool {
+        self.atoms.is_empty()
     }
 
     /// The atom of a rank.
@@ -94,7 +114,7 @@ impl Ranks {
             let mut key: Vec<(u32, i32)> = m
                 .factors()
                 .iter()
-                .map(|&(id, e)| (self.of[&id], e))
+                .map(|&(id, e)| (self.rank(id), e))
                 .collect();
             key.sort_unstable_by_key(|&(r, _)| r);
             terms.push((key, c));

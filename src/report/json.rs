@@ -20,6 +20,7 @@ use crate::print::parallel;
 use crate::print::poly::{poly_to_string, Ranks, Renderer};
 use crate::print::Style;
 use serde_json::{json as j, Value};
+use std::collections::HashMap;
 
 /// One expression of a document to print.
 enum Job<'a> {
@@ -71,7 +72,13 @@ pub fn json(der: &Derivation, method: Method) -> Value {
     let taus = tau(der, method);
     let nonzero = el.nonzero_christoffel();
     let mut quantities: Vec<&Poly> = el.d.iter().chain(&el.c).flatten().collect();
-    quantities.extend(nonzero.iter().map(|(_, _, _, c)| *c));
+    // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
+    quantities.extend(
+        nonzero
+            .iter()
+            .filter(|(i, jj, _, _)| i <= jj)
+            .map(|(_, _, _, c)| *c),
+    );
     quantities.extend(el.g.iter());
     quantities.push(&el.p);
     let jobs: Vec<Job> = taus
@@ -103,9 +110,20 @@ pub fn json(der: &Derivation, method: Method) -> Value {
     };
     let mass_matrix = matrix(el.d.len());
     let coriolis = matrix(el.c.len());
+    // Printed for i ≤ j; (j, i, k) comes later in index order and takes (i, j, k)'s string.
+    let mut symbols: HashMap<(usize, usize, usize), Value> = HashMap::new();
     let christoffel: Vec<Value> = nonzero
         .iter()
-        .map(|(i, jj, k, _)| j!({ "i": i, "j": jj, "k": k, "value": next() }))
+        .map(|&(i, jj, k, _)| {
+            let value = if i <= jj {
+                let v = next();
+                symbols.insert((i, jj, k), v.clone());
+                v
+            } else {
+                symbols[&(jj, i, k)].clone()
+            };
+            j!({ "i": i, "j": jj, "k": k, "value": value })
+        })
         .collect();
     let gravity: Vec<Value> = el.g.iter().map(|_| next()).collect();
     let potential = next();
