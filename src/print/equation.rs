@@ -186,10 +186,36 @@ struct Split<'p> {
 /// term, keys in order within a stage ([`shown`] lays out each).
 pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
     let ranks = Ranks::of([p])?;
+    let mut sink = Collect {
+        frames: vec![(String::new(), Vec::new())],
+        style,
+    };
+    lay_out(p, &ranks, style, &mut sink);
+    Some(sink.frames.pop().expect("the root frame").1)
+}
+
+/// [`join`] of [`pieces`], written straight into one string (no display term is built), or `None`
+/// as for [`pieces`].
+pub fn side_text(p: &Poly, style: Style) -> Option<String> {
+    let ranks = Ranks::of([p])?;
+    let mut sink = Write {
+        out: String::with_capacity(48 * p.len()),
+        frames: vec![Frame::default()],
+        style,
+    };
+    lay_out(p, &ranks, style, &mut sink);
+    if sink.frames[0].count == 0 {
+        sink.out.push('0');
+    }
+    Some(sink.out)
+}
+
+/// The display terms of `p` (whose atoms `ranks` ranks) given to `sink` in order.
+fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sink) {
     let roles: Vec<Role> = (0..ranks.len() as u32)
         .map(|r| role(ranks.atom(r)))
         .collect();
-    let mut r = Renderer::new(&ranks, style);
+    let mut r = Renderer::new(ranks, style);
     let mut buf: Vec<(u32, i32)> =
         Vec::with_capacity(p.terms().iter().map(|(m, _)| m.factors().len()).sum());
     let mut splits: Vec<Split> = Vec::with_capacity(p.len());
@@ -240,7 +266,6 @@ pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
             .cmp(&trig_size(b))
             .then_with(|| super::poly::cmp_factor_lists(a, b))
     });
-    let mut out = Vec::new();
     for key in keys.iter().flatten() {
         let coeff: Vec<Coefficient> = groups[key]
             .iter()
@@ -249,9 +274,8 @@ pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
                 (&buf[t.mid as usize..t.end as usize], t.coeff)
             })
             .collect();
-        out.extend(shown(&mut r, &roles, coeff, key, style));
+        shown(sink, &mut r, &roles, coeff, key);
     }
-    Some(out)
 }
 
 /// The number of trig factors of a key (with multiplicity).
@@ -265,37 +289,29 @@ type Coefficient<'a> = (&'a [(u32, i32)], &'a Rational);
 /// The display terms of `coefficient · key`: one product when the coefficient is a single term,
 /// else the coefficient grouped by leading parameter in parentheses, then the key.
 fn shown(
+    sink: &mut impl Sink,
     r: &mut Renderer,
     roles: &[Role],
     mut coeff: Vec<Coefficient>,
     key: &[(u32, i32)],
-    style: Style,
-) -> Vec<Shown> {
+) {
     coeff.retain(|(_, c)| !c.is_zero());
     if coeff.is_empty() {
-        return vec![];
+        return;
     }
     if key.is_empty() {
         // The terms without key atoms at the last stage: grouped, without parentheses.
-        return grouped(r, roles, &coeff, style);
+        return grouped(sink, r, roles, &coeff);
     }
     if let [(f, c)] = coeff.as_slice() {
         let mut all: Factors = f.to_vec();
         all.extend(key.iter().copied());
         all.sort_unstable_by_key(|&(r, _)| r);
-        return vec![product(r, c, &all)];
+        return sink.product(r, c, &all);
     }
-    let inner = grouped(r, roles, &coeff, style);
-    let after = product(r, &Rational::one(), key).body.text();
-    vec![Shown {
-        negative: false,
-        body: Body::Group {
-            before: String::new(),
-            inner,
-            after,
-            style,
-        },
-    }]
+    sink.open(r, &[]);
+    grouped(sink, r, roles, &coeff);
+    sink.close(r, key);
 }
 
 /// Leads in the canonical order of products (rank, then the higher power first), no lead last.
@@ -308,14 +324,17 @@ fn cmp_leads(a: Option<(u32, i32)>, b: Option<(u32, i32)>) -> std::cmp::Ordering
     }
 }
 
+/// A coefficient's term by its lead: the lead, the range of the rest in a shared buffer, the term's
+/// index.
+type Led = (Option<(u32, i32)>, usize, usize, usize);
+
 /// Terms grouped by their leading parameter (the first parameter factor in canonical order, with
 /// its power): `m2 (l1^2 + lc2^2) + I2`. Groups in the order of their leads, the terms without a
 /// parameter last; within a group, the terms in the canonical order of what is left of them.
-fn grouped(r: &mut Renderer, roles: &[Role], terms: &[Coefficient], style: Style) -> Vec<Shown> {
-    // (lead, the rest's range in `rest`, the term's index), sorted by lead, then by the rest.
+fn grouped(sink: &mut impl Sink, r: &mut Renderer, roles: &[Role], terms: &[Coefficient]) {
+    // Sorted by lead, then by the rest.
     let mut rest: Factors = Vec::with_capacity(terms.iter().map(|(f, _)| f.len()).sum());
-    let mut entries: Vec<(Option<(u32, i32)>, usize, usize, usize)> =
-        Vec::with_capacity(terms.len());
+    let mut entries: Vec<Led> = Vec::with_capacity(terms.len());
     for (i, (f, _)) in terms.iter().enumerate() {
         let lead = f
             .iter()
@@ -329,34 +348,183 @@ fn grouped(r: &mut Renderer, roles: &[Role], terms: &[Coefficient], style: Style
         cmp_leads(a.0, b.0)
             .then_with(|| super::poly::cmp_factor_lists(&rest[a.1..a.2], &rest[b.1..b.2]))
     });
-    let mut out = Vec::new();
     for run in entries.chunk_by(|a, b| a.0 == b.0) {
         match (run[0].0, run.len()) {
-            (None, _) => out.extend(
-                run.iter()
-                    .map(|&(_, s, e, i)| product(r, terms[i].1, &rest[s..e])),
-            ),
+            (None, _) => {
+                for &(_, s, e, i) in run {
+                    sink.product(r, terms[i].1, &rest[s..e]);
+                }
+            }
             // The lead and the rest are the term's own factors.
-            (Some(_), 1) => out.push(product(r, terms[run[0].3].1, terms[run[0].3].0)),
+            (Some(_), 1) => sink.product(r, terms[run[0].3].1, terms[run[0].3].0),
             (Some(l), _) => {
-                let inner: Vec<Shown> = run
-                    .iter()
-                    .map(|&(_, s, e, i)| product(r, terms[i].1, &rest[s..e]))
-                    .collect();
-                let before = product(r, &Rational::one(), &[l]).body.text();
-                out.push(Shown {
-                    negative: false,
-                    body: Body::Group {
-                        before,
-                        inner,
-                        after: String::new(),
-                        style,
-                    },
-                });
+                sink.open(r, &[l]);
+                for &(_, s, e, i) in run {
+                    sink.product(r, terms[i].1, &rest[s..e]);
+                }
+                sink.close(r, &[]);
             }
         }
     }
-    out
+}
+
+/// Where the display terms of a side go, in order: products, and groups `before (…) after` opened
+/// and closed around their terms (`before`, `after`: factors, possibly none).
+trait Sink {
+    /// A product term `c · Π factors` (factors sorted by rank).
+    fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]);
+    /// Opens a group after its factors `before`.
+    fn open(&mut self, r: &mut Renderer, before: &[(u32, i32)]);
+    /// Closes the innermost group, with its factors `after`.
+    fn close(&mut self, r: &mut Renderer, after: &[(u32, i32)]);
+}
+
+/// The product of `factors` alone (`m_{2}`), or nothing for none.
+fn factors_text(r: &mut Renderer, factors: &[(u32, i32)]) -> String {
+    if factors.is_empty() {
+        return String::new();
+    }
+    r.product(&Rational::one(), factors)
+}
+
+/// A sink that builds [`Shown`] terms (for a layout): one frame per open group, its `before` text
+/// and its terms so far; the root frame holds the side's terms.
+struct Collect {
+    frames: Vec<(String, Vec<Shown>)>,
+    style: Style,
+}
+
+impl Sink for Collect {
+    fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) {
+        let t = product(r, c, factors);
+        self.frames.last_mut().expect("a frame").1.push(t);
+    }
+
+    fn open(&mut self, r: &mut Renderer, before: &[(u32, i32)]) {
+        self.frames.push((factors_text(r, before), Vec::new()));
+    }
+
+    fn close(&mut self, r: &mut Renderer, after: &[(u32, i32)]) {
+        let (before, inner) = self.frames.pop().expect("an open group");
+        let t = Shown {
+            negative: false,
+            body: Body::Group {
+                before,
+                inner,
+                after: factors_text(r, after),
+                style: self.style,
+            },
+        };
+        self.frames.last_mut().expect("the root frame").1.push(t);
+    }
+}
+
+/// One sum being written by [`Write`]: where its terms start, how many it has, whether one has a
+/// space (a nested sum is compact without), and where each later term's separator ` + ` / ` - `
+/// was written (to be made `+` / `-` if the sum turns out compact).
+#[derive(Default)]
+struct Frame {
+    start: usize,
+    count: usize,
+    spaced: bool,
+    separators: Vec<usize>,
+}
+
+/// A sink that writes the side's text as [`join`] prints its [`pieces`], straight into one string.
+struct Write {
+    out: String,
+    frames: Vec<Frame>,
+    style: Style,
+}
+
+impl Write {
+    /// Starts a term of the innermost sum: its sign (always written spaced, see [`Frame`]).
+    fn sign(&mut self, negative: bool) {
+        let f = self.frames.last_mut().expect("a frame");
+        if f.count > 0 {
+            f.separators.push(self.out.len());
+            self.out.push_str(if negative { " - " } else { " + " });
+        } else if negative {
+            self.out.push('-');
+        }
+        f.count += 1;
+    }
+
+    /// Marks the innermost sum as having a term with a space.
+    fn spaced(&mut self, yes: bool) {
+        self.frames.last_mut().expect("a frame").spaced |= yes;
+    }
+
+    /// The separator between a group's factors and its parentheses.
+    fn separator(&self) -> char {
+        if self.style == Style::Ascii {
+            '*'
+        } else {
+            ' '
+        }
+    }
+}
+
+impl Sink for Write {
+    fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) {
+        self.sign(c.is_negative());
+        let start = self.out.len();
+        r.product_into(&mut self.out, c, factors);
+        let space = self.out.as_bytes()[start..].contains(&b' ');
+        self.spaced(space);
+    }
+
+    fn open(&mut self, r: &mut Renderer, before: &[(u32, i32)]) {
+        self.sign(false);
+        let start = self.out.len();
+        if !before.is_empty() {
+            r.product_into(&mut self.out, &Rational::one(), before);
+            let space = self.out.as_bytes()[start..].contains(&b' ');
+            self.spaced(space || self.style != Style::Ascii);
+            self.out.push(self.separator());
+        }
+        self.out.push_str(if self.style == Style::Latex {
+            "\\left("
+        } else {
+            "("
+        });
+        self.frames.push(Frame {
+            start: self.out.len(),
+            ..Frame::default()
+        });
+    }
+
+    fn close(&mut self, r: &mut Renderer, after: &[(u32, i32)]) {
+        let f = self.frames.pop().expect("an open group");
+        if f.count == 0 {
+            self.out.push('0');
+        }
+        if !f.spaced && !f.separators.is_empty() {
+            // A compact sum: each ` + ` / ` - ` becomes `+` / `-`.
+            let tail = self.out.split_off(f.start);
+            let mut from = 0;
+            for &at in &f.separators {
+                let at = at - f.start;
+                self.out.push_str(&tail[from..at]);
+                self.out.push_str(&tail[at + 1..at + 2]);
+                from = at + 3;
+            }
+            self.out.push_str(&tail[from..]);
+        }
+        self.spaced(f.spaced);
+        self.out.push_str(if self.style == Style::Latex {
+            "\\right)"
+        } else {
+            ")"
+        });
+        if !after.is_empty() {
+            self.out.push(self.separator());
+            let start = self.out.len();
+            r.product_into(&mut self.out, &Rational::one(), after);
+            let space = self.out.as_bytes()[start..].contains(&b' ');
+            self.spaced(space || self.style != Style::Ascii);
+        }
+    }
 }
 
 /// One product `c · Π factors` (factors sorted by rank).
@@ -364,5 +532,41 @@ fn product(r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) -> Shown {
     Shown {
         negative: c.is_negative(),
         body: Body::Product(r.product(c, factors)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::to_poly;
+
+    fn p(s: &str) -> Poly {
+        to_poly(&crate::parse::parse_expr(s).expect("valid expression"))
+    }
+
+    #[test]
+    fn a_side_written_straight_is_its_display_terms_joined() {
+        // Groups of every kind: by acceleration and rate with a parenthesised coefficient, by lead
+        // parameter inside them (compact `(rx1^2+rz1^2)` and spaced), single products, a constant
+        // and terms without any parameter; negative leading terms; a zero side.
+        let sides = [
+            "0",
+            "-3",
+            "m1*(rx1^2 + rz1^2)*qdd1 + m2*(l1^2 + 2*l1*lc2*cos(q2) + lc2^2)*qdd1 - m2*l1*lc2*sin(q2)*qd2^2 \
+             + I2*qdd2 + g*m1*cos(q1) - 1/2*g*m2*sin(q1)*cos(q2) + qd1*qd2*(a - b) - 7",
+            "-(a*cos(q1) + b*sin(q1)*cos(q2))^3*qdd3 + (c + d*q3)^2*qd1*qd3 - 2/3*qd2^2 + e*f*sin(q2)^2 - x",
+            "qdd1*(m1 + m2) + qdd2*(m3^2*x - y) + m4*(u + v)*cos(q4) + m4*(u - v)*sin(q4)",
+        ];
+        for s in sides {
+            let side = p(s);
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                let shown = pieces(&side, style).expect("plain atoms");
+                assert_eq!(
+                    side_text(&side, style).expect("plain atoms"),
+                    join(&shown),
+                    "{s} in {style:?}"
+                );
+            }
+        }
     }
 }

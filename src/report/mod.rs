@@ -48,55 +48,48 @@ pub const DISPLAY_BUDGET: usize = 200;
 /// [`DISPLAY_BUDGET`] terms, straight from the normal form beyond ([`print::equation`]).
 pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
     if tau_k.len() > DISPLAY_BUDGET {
-        if let Some(shown) = print::equation::pieces(tau_k, style) {
-            return print::equation::join(&shown);
+        if let Some(text) = print::equation::side_text(tau_k, style) {
+            return text;
         }
     }
     print::sum_to_string(&lhs_terms(tau_k), style)
 }
 
-/// The display terms of every left side past [`DISPLAY_BUDGET`] (`None` for the others and where
-/// there are none), on several threads when there are several such sides: the terms come from the
-/// normal form by a renderer that reads and writes strings only (no tidying, no new atoms), so they
-/// are the same on any number of threads.
-fn large_pieces(taus: &[Poly], style: Style) -> Vec<Option<Vec<print::equation::Shown>>> {
-    let large: Vec<usize> = (0..taus.len())
-        .filter(|&k| taus[k].len() > DISPLAY_BUDGET)
-        .collect();
-    let shown = print::parallel::map(
-        &large,
-        |&k| taus[k].len(),
-        2 * DISPLAY_BUDGET,
-        |&k| print::equation::pieces(&taus[k], style),
-    );
-    let mut out: Vec<Option<Vec<print::equation::Shown>>> = vec![None; taus.len()];
-    for (k, p) in large.into_iter().zip(shown) {
-        out[k] = p;
-    }
-    out
-}
-
-/// [`lhs_string`] of every equation, the large ones printed on several threads
-/// ([`large_pieces`]).
+/// [`lhs_string`] of every equation, on several threads when there is enough to print
+/// ([`print::parallel::map`], heaviest first): the large sides are printed from the normal form by
+/// a renderer that reads and writes strings only (no tidying, no new atoms), the small ones tidied
+/// on canonical expressions in their structural order, so the text is the same on any number of
+/// threads.
 pub fn lhs_strings(taus: &[Poly], style: Style) -> Vec<String> {
-    taus.iter()
-        .zip(large_pieces(taus, style))
-        .map(|(t, p)| match p {
-            Some(p) => print::equation::join(&p),
-            None => lhs_string(t, style),
-        })
-        .collect()
+    print::parallel::map(
+        taus,
+        |t| {
+            if t.len() > DISPLAY_BUDGET {
+                t.len()
+            } else {
+                // Tidying costs far more per term than printing.
+                20 * t.len() * t.len()
+            }
+        },
+        2 * DISPLAY_BUDGET,
+        |t| lhs_string(t, style),
+    )
 }
 
-/// [`lhs_side`] of every equation, the large ones on several threads ([`large_pieces`]).
+/// [`lhs_side`] of every equation, on several threads as [`lhs_strings`].
 pub fn lhs_sides(taus: &[Poly]) -> Vec<Side> {
-    taus.iter()
-        .zip(large_pieces(taus, Style::Latex))
-        .map(|(t, p)| match p {
-            Some(p) => Side::Shown(p),
-            None => lhs_side(t),
-        })
-        .collect()
+    print::parallel::map(
+        taus,
+        |t| {
+            if t.len() > DISPLAY_BUDGET {
+                t.len()
+            } else {
+                20 * t.len() * t.len()
+            }
+        },
+        2 * DISPLAY_BUDGET,
+        lhs_side,
+    )
 }
 
 /// The number of terms beyond which a quantity of a JSON document (`D`, `C`, `c_ijk`, `g`, `P`) is
@@ -157,7 +150,17 @@ pub fn equalities(lines: &[(String, String)], style: Style) -> String {
                 body.join(" \\\\\n")
             )
         }
-        Style::Text | Style::Ascii => lines.iter().map(|(l, r)| format!("{l} = {r}\n")).collect(),
+        Style::Text | Style::Ascii => {
+            let mut out =
+                String::with_capacity(lines.iter().map(|(l, r)| l.len() + r.len() + 4).sum());
+            for (l, r) in lines {
+                out.push_str(l);
+                out.push_str(" = ");
+                out.push_str(r);
+                out.push('\n');
+            }
+            out
+        }
     }
 }
 
