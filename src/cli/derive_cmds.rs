@@ -144,8 +144,9 @@ pub fn derive(
         Format::Latex => report::equations(&der, method, Style::Latex),
         Format::Json => {
             let doc = report::json(&der, method);
-            let mut text = serde_json::to_string_pretty(&doc).expect("JSON values serialise");
+            let mut text = report::to_pretty(&doc);
             text.push('\n');
+            std::mem::forget(doc);
             text
         }
     };
@@ -169,12 +170,7 @@ pub fn derive_compact(
         _ if ascii => Style::Ascii,
         _ => Style::Text,
     };
-    let json = |doc: serde_json::Value| {
-        format!(
-            "{}\n",
-            serde_json::to_string_pretty(&doc).expect("JSON values serialise")
-        )
-    };
+    let json = |doc: serde_json::Value| format!("{}\n", report::to_pretty(&doc));
     if method == MethodArg::Lagrange {
         let der =
             Derivation::new(robot).map_err(|e| CliError::Input(format!("error: {name}: {e}")))?;

@@ -20,9 +20,9 @@ pub const LINE_WIDTH: usize = 66;
 /// The internal name of [`LINE_WIDTH`].
 const BUDGET: usize = LINE_WIDTH;
 
-/// The width of each byte outside a command name: `+`, `-`, `=` are 2 (with their spacing), braces,
-/// `^`, `_`, spaces, `&` and the continuation bytes of a multi-byte character 0, anything else 1;
-/// [`COMMAND`] marks the backslash.
+/// The width of each byte read alone: `+`, `-`, `=` are 2 (with their spacing), braces, `^`, `_`,
+/// spaces, `&`, the backslash and the continuation bytes of a multi-byte character 0, anything else
+/// 1. Commands are corrected by [`width`].
 const BYTE_WIDTH: [u8; 256] = {
     let mut t = [1u8; 256];
     let mut b = 0x80;
@@ -36,50 +36,53 @@ const BYTE_WIDTH: [u8; 256] = {
     t[b'_' as usize] = 0;
     t[b' ' as usize] = 0;
     t[b'&' as usize] = 0;
+    t[b'\\' as usize] = 0;
     t[b'+' as usize] = 2;
     t[b'-' as usize] = 2;
     t[b'=' as usize] = 2;
-    t[b'\\' as usize] = COMMAND;
     t
 };
 
-/// [`BYTE_WIDTH`]'s mark of the byte that starts a command.
-const COMMAND: u8 = u8::MAX;
+/// The width of a command by its name (`\sin` 3, `\quad` 2, layout commands 0, others 1).
+fn command_width(name: &[u8]) -> usize {
+    match name {
+        b"sin" | b"cos" | b"tan" => 3,
+        b"quad" => 2,
+        b"frac" | b"left" | b"right" | b"dot" | b"ddot" | b"dddot" | b"ddddot" | b"mathrm"
+        | b"begin" | b"end" | b"bmatrix" | b"sqrt" => 0,
+        _ => 1,
+    }
+}
 
-/// The estimated printed width of LaTeX math source. Read byte by byte: every byte that starts a
-/// character counts as that character (commands are ASCII; any other character is one unit).
+/// The estimated printed width of LaTeX math source: every character one unit (any byte that starts
+/// a character counts as one), binary operators two, layout characters none, and a command as its
+/// name says ([`command_width`]); a control symbol (`\\`, `\,`, `\{`) is one unit for a brace and
+/// none otherwise. Every byte is first counted alone ([`BYTE_WIDTH`]), then the commands, found
+/// by their backslashes, are counted again as a whole.
 pub fn width(latex: &str) -> usize {
     let bytes = latex.as_bytes();
-    let mut w = 0;
+    let mut w: usize = bytes.iter().map(|&b| BYTE_WIDTH[b as usize] as usize).sum();
     let mut i = 0;
-    while i < bytes.len() {
-        let c = BYTE_WIDTH[bytes[i] as usize];
-        i += 1;
-        if c != COMMAND {
-            w += c as usize;
-            continue;
+    while let Some(off) = memchr::memchr(b'\\', &bytes[i..]) {
+        let start = i + off + 1;
+        let mut end = start;
+        while end < bytes.len() && bytes[end].is_ascii_alphabetic() {
+            end += 1;
         }
-        // The command's name, as a slice of the source (no allocation).
-        let start = i;
-        while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
-            i += 1;
-        }
-        if i == start {
-            // `\\`, `\,`, `\{`: a control symbol (its continuation bytes, if any, count nothing
-            // below).
-            if let Some(&n) = bytes.get(i) {
-                w += usize::from(n == b'{' || n == b'}');
-                i += 1;
+        if end == start {
+            // A control symbol: its byte (if any) counts as the symbol, and starts nothing.
+            match bytes.get(start) {
+                Some(&n) => {
+                    w = w - BYTE_WIDTH[n as usize] as usize + usize::from(n == b'{' || n == b'}');
+                    i = start + 1;
+                }
+                None => i = start,
             }
             continue;
         }
-        w += match &bytes[start..i] {
-            b"sin" | b"cos" | b"tan" => 3,
-            b"quad" => 2,
-            b"frac" | b"left" | b"right" | b"dot" | b"ddot" | b"dddot" | b"ddddot" | b"mathrm"
-            | b"begin" | b"end" | b"bmatrix" | b"sqrt" => 0,
-            _ => 1,
-        };
+        // The name's letters were counted one each.
+        w = w - (end - start) + command_width(&bytes[start..end]);
+        i = end;
     }
     w
 }
@@ -599,6 +602,55 @@ impl Layout {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`width`] read byte by byte, as a reference.
+    fn width_by_bytes(latex: &str) -> usize {
+        let bytes = latex.as_bytes();
+        let (mut w, mut i) = (0, 0);
+        while i < bytes.len() {
+            let c = bytes[i];
+            i += 1;
+            match c {
+                b'\\' => {
+                    let start = i;
+                    while i < bytes.len() && bytes[i].is_ascii_alphabetic() {
+                        i += 1;
+                    }
+                    if i == start {
+                        if let Some(&n) = bytes.get(i) {
+                            w += usize::from(n == b'{' || n == b'}');
+                            i += 1;
+                        }
+                        continue;
+                    }
+                    w += command_width(&bytes[start..i]);
+                }
+                b'{' | b'}' | b'^' | b'_' | b' ' | b'&' => {}
+                b'+' | b'-' | b'=' => w += 2,
+                _ if c & 0xC0 == 0x80 => {}
+                _ => w += 1,
+            }
+        }
+        w
+    }
+
+    #[test]
+    fn width_counts_commands_as_whole_tokens() {
+        let samples = [
+            "",
+            "\\",
+            "\\\\quad x",
+            "\\\\\\{",
+            "a\\,b\\}c\\{",
+            "\\frac{1}{2} m_{1} \\ddot{q}_{1} - \\sin{\\left(q_{2} \\right)}^{2}",
+            "\\left(m_{2} + m_{3}\\right) g = u_{2} \\\\",
+            "\\Xi_{12} + \\theta_{1}\\mathrm{d}\\é \\",
+            "ü + é - ∂ = \\quad\\quad x^{2}_{3} & y",
+        ];
+        for s in samples {
+            assert_eq!(width(s), width_by_bytes(s), "{s:?}");
+        }
+    }
     use crate::parse::parse_expr;
 
     #[test]

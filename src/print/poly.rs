@@ -310,43 +310,46 @@ impl<'a> Renderer<'a> {
 
     /// The canonical sum of `p`'s terms, printed (`nested`: compact unless a term has a space).
     pub fn sum(&mut self, p: &Poly, nested: bool) -> String {
-        let mut terms: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(p.len());
+        // Every term's factors by rank, in one buffer; the terms as ranges of it, then sorted.
+        let mut buf: Vec<(u32, i32)> =
+            Vec::with_capacity(p.terms().iter().map(|(m, _)| m.factors().len()).sum());
+        let mut terms: Vec<(usize, usize, &Rational)> = Vec::with_capacity(p.len());
         let mut constant = None;
         for (m, c) in p.terms() {
             if m.factors().is_empty() {
                 constant = Some(c);
                 continue;
             }
-            let mut key: Vec<(u32, i32)> = m
-                .factors()
-                .iter()
-                .map(|&(id, e)| (self.ranks.rank(id), e))
-                .collect();
-            key.sort_unstable_by_key(|&(r, _)| r);
-            terms.push((key, c));
+            let start = buf.len();
+            buf.extend(m.factors().iter().map(|&(id, e)| (self.ranks.rank(id), e)));
+            buf[start..].sort_unstable_by_key(|&(r, _)| r);
+            terms.push((start, buf.len(), c));
         }
-        terms.sort_by(|a, b| cmp_factor_lists(&a.0, &b.0));
+        terms.sort_by(|a, b| cmp_factor_lists(&buf[a.0..a.1], &buf[b.0..b.1]));
         if let Some(c) = constant {
-            terms.push((Vec::new(), c));
+            terms.push((0, 0, c));
         }
         if nested {
-            let signs: Vec<bool> = terms.iter().map(|(_, c)| c.is_negative()).collect();
-            let bodies: Vec<String> = terms.iter().map(|(k, c)| self.product(c, k)).collect();
+            let signs: Vec<bool> = terms.iter().map(|(_, _, c)| c.is_negative()).collect();
+            let bodies: Vec<String> = terms
+                .iter()
+                .map(|&(s, e, c)| self.product(c, &buf[s..e]))
+                .collect();
             return join_signed(&signs, &bodies, nested);
         }
         if terms.is_empty() {
             return "0".to_string();
         }
         // Not nested: always spaced, so every term is written straight into the text.
-        let mut out = String::with_capacity(terms.len() * 24);
-        for (i, (key, c)) in terms.iter().enumerate() {
+        let mut out = String::with_capacity(8 * buf.len() + 8 * terms.len());
+        for (i, &(s, e, c)) in terms.iter().enumerate() {
             match (i, c.is_negative()) {
                 (0, false) => {}
                 (0, true) => out.push('-'),
                 (_, false) => out.push_str(" + "),
                 (_, true) => out.push_str(" - "),
             }
-            self.product_into(&mut out, c, key);
+            self.product_into(&mut out, c, &buf[s..e]);
         }
         out
     }

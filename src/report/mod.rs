@@ -3,12 +3,14 @@
 
 mod compact;
 mod json;
+mod pretty;
 
 pub use compact::{
     lagrange_json as compact_lagrange_json, lagrange_program as compact_lagrange,
     program as compact_program, program_json as compact_json,
 };
 pub use json::json;
+pub use pretty::to_pretty;
 
 use crate::algebra::tidy::equation_terms_poly;
 use crate::algebra::{Expr, Poly, Symbol};
