@@ -309,7 +309,9 @@ impl Layout {
             };
             let w = width(&joined);
             if !line.is_empty() && used + w > room {
-                lines.push(std::mem::take(&mut line));
+                let capacity = 2 * line.len();
+                let full = std::mem::replace(&mut line, String::with_capacity(capacity));
+                lines.push(full);
                 used = 0;
             }
             used += w;
@@ -359,10 +361,16 @@ impl Layout {
             }
             rows
         };
-        format!(
-            "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
-            rows.join(" \\\\\n")
-        )
+        let mut out = String::with_capacity(rows.iter().map(|r| r.len() + 4).sum::<usize>() + 32);
+        out.push_str("\\begin{align*}\n");
+        for (i, row) in rows.iter().enumerate() {
+            if i > 0 {
+                out.push_str(" \\\\\n");
+            }
+            out.push_str(row);
+        }
+        out.push_str("\n\\end{align*}\n");
+        out
     }
 
     /// The rows `  & line` and `  &\quad line` of one left-aligned sum ending with `end`, each at
@@ -385,11 +393,16 @@ impl Layout {
             .enumerate()
             .map(|(i, line)| {
                 let end = if i == last { end } else { "" };
+                let mut row = String::with_capacity(line.len() + end.len() + 10);
                 if i == 0 {
-                    format!("  & {line}{end}")
+                    row.push_str("  & ");
+                    row.push_str(line);
                 } else {
-                    format!("  &\\quad {}{end}", line.trim_start())
+                    row.push_str("  &\\quad ");
+                    row.push_str(line.trim_start());
                 }
+                row.push_str(end);
+                row
             })
             .collect()
     }
@@ -448,7 +461,9 @@ impl Layout {
             };
             let w = width(body) + if sign.is_empty() { 0 } else { 2 };
             if !line.is_empty() && used + w > room {
-                lines.push(std::mem::take(&mut line));
+                let capacity = 2 * line.len();
+                let full = std::mem::replace(&mut line, String::with_capacity(capacity));
+                lines.push(full);
                 used = 0;
             }
             used += w;
