@@ -12,10 +12,10 @@
 //! the structural order) before anyone sees it.
 
 use super::expr::Expr;
+use super::fast_hash::FxHashMap;
 use super::number::Rational;
 use super::symbol::Symbol;
 use num_bigint::BigInt;
-use std::collections::HashMap;
 use std::sync::{LazyLock, RwLock};
 
 /// An interned atom id: class in the top 4 bits, serial below.
@@ -69,7 +69,9 @@ pub enum Atom {
 #[derive(Default)]
 struct Interner {
     atoms: Vec<Atom>,
-    index: HashMap<Atom, u32>,
+    /// Atom → serial, hashed by [`FxHasher`](super::fast_hash::FxHasher): looked up for every atom
+    /// of every conversion to the normal form.
+    index: FxHashMap<Atom, u32>,
 }
 
 static INTERNER: LazyLock<RwLock<Interner>> = LazyLock::new(|| RwLock::new(Interner::default()));

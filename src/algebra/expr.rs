@@ -86,7 +86,9 @@ pub enum Kind {
 
 impl Expr {
     fn make(kind: Kind) -> Expr {
-        let mut h = std::collections::hash_map::DefaultHasher::new();
+        // Every node is hashed once, here; the children's hashes are words already, so the fast
+        // multiply-rotate hash serves (the hash only speeds up equality and hash maps, never orders).
+        let mut h = super::fast_hash::FxHasher::default();
         kind.hash(&mut h);
         Expr(Arc::new(Node {
             hash: h.finish(),

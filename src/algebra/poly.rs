@@ -21,7 +21,7 @@ use super::pi_field;
 use super::symbol::Symbol;
 use num_bigint::BigInt;
 use num_traits::One;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 /// A monomial: atoms with non-zero integer exponents, sorted by id.
@@ -766,7 +766,7 @@ impl Poly {
 
     /// The canonical expression of this polynomial (a sorted, expanded sum).
     pub fn to_expr(&self) -> Expr {
-        let mut cache: HashMap<AtomId, Expr> = HashMap::new();
+        let mut cache: FxHashMap<AtomId, Expr> = FxHashMap::default();
         let terms: Vec<Expr> = self
             .terms
             .iter()

@@ -28,9 +28,10 @@
 
 use super::rule::{first_change, fixpoint, Rule};
 use crate::algebra::expr::{Expr, Func, Kind};
+use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::normal::normal_form;
 use crate::algebra::number::Rational;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 /// The most passes [`contract_trig`] makes (each pass merges at least one pair of terms).
 pub const PASS_LIMIT: usize = 64;
@@ -214,7 +215,7 @@ fn angle_sum(e: &Expr) -> Option<Expr> {
     // (other factors R, angle A, angle B) -> the terms `c R f(A) g(B)`, A < B in canonical order.
     // Keyed first by R's factor list (canonical lists are equal exactly when the products are), so
     // the product R is built only for the groups of two or more, the only ones that can merge.
-    let mut buckets: HashMap<BucketKey, Vec<Candidate>> = HashMap::new();
+    let mut buckets: FxHashMap<BucketKey, Vec<Candidate>> = FxHashMap::default();
     for (index, t) in terms.iter().enumerate() {
         let trig: Vec<(usize, Func, &Expr)> = t
             .factors
