@@ -34,12 +34,14 @@
 use super::atom;
 use super::error::AlgebraError;
 use super::expr::{Expr, Func, Kind};
+use super::fast_hash::FxHashMap;
 use super::limits::{check_bits, check_terms, describe};
 use super::number::Rational;
 use super::poly::{Mono, Poly};
 use super::symbol::Symbol;
 use num_integer::Integer;
 use num_traits::{ToPrimitive, Zero};
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 /// The polynomial normal form of `e`; a part beyond the size limits stays an opaque atom (see
@@ -127,6 +129,8 @@ struct Converter {
     /// The `L` of the base `π/L` of the constant angles; 0 for none that a `u64` holds.
     pi_base: u64,
     strict: bool,
+    /// Each sine and cosine converted so far (a large sum repeats the same few in most terms).
+    trig_memo: RefCell<FxHashMap<Expr, Poly>>,
 }
 
 impl Converter {
@@ -138,6 +142,7 @@ impl Converter {
             bases,
             pi_base,
             strict,
+            trig_memo: RefCell::default(),
         }
     }
 
@@ -190,7 +195,14 @@ impl Converter {
                     _ => self.poly(&e)?,
                 }
             }
-            Kind::Fun(f, a) => self.trig(*f, a)?,
+            Kind::Fun(f, a) => {
+                if let Some(p) = self.trig_memo.borrow().get(e) {
+                    return Ok(p.clone());
+                }
+                let p = self.trig(*f, a)?;
+                self.trig_memo.borrow_mut().insert(e.clone(), p.clone());
+                p
+            }
         })
     }
 
@@ -456,6 +468,10 @@ impl Converter {
     /// (for `c != 0`); `sin r π`, `cos r π` exact values, polynomials over the expression's base
     /// `π/L`, or (beyond [`MAX_PI_BASE`](super::pi_field::MAX_PI_BASE)) an atom pair of their own.
     fn constant_angle(&self, k: &Expr) -> (Poly, Poly) {
+        if k.is_zero() {
+            // The common case, an angle without a constant: (sin 0, cos 0) without the table.
+            return (Poly::zero(), Poly::one());
+        }
         let mut c = Rational::zero();
         let mut rest = Vec::new();
         for (t, coeff) in k.terms() {
