@@ -180,10 +180,6 @@ struct Split<'p> {
 
 /// The display terms of an equation side, or `None` if an atom of `p` is outside the plain class
 /// (the caller then takes the canonical route).
-///
-/// A term goes to the first stage whose key atoms it has: its accelerations (stage 0), else its
-/// rates (stage 1), else its trig factors (stage 2, possibly none). Terms of one key share a display
-/// term, keys in order within a stage ([`shown`] lays out each).
 pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
     let ranks = Ranks::of([p])?;
     let mut sink = Collect {
@@ -211,6 +207,10 @@ pub fn side_text(p: &Poly, style: Style) -> Option<String> {
 }
 
 /// The display terms of `p` (whose atoms `ranks` ranks) given to `sink` in order.
+///
+/// A term goes to the first stage whose key atoms it has: its accelerations (stage 0), else its
+/// rates (stage 1), else its trig factors (stage 2, possibly none). Terms of one key share a display
+/// term, keys in order within a stage ([`shown`] lays out each).
 fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sink) {
     let roles: Vec<Role> = (0..ranks.len() as u32)
         .map(|r| role(ranks.atom(r)))

@@ -63,35 +63,24 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
 /// on canonical expressions in their structural order, so the text is the same on any number of
 /// threads.
 pub fn lhs_strings(taus: &[Poly], style: Style) -> Vec<String> {
-    print::parallel::map(
-        taus,
-        |t| {
-            if t.len() > DISPLAY_BUDGET {
-                t.len()
-            } else {
-                // Tidying costs far more per term than printing.
-                20 * t.len() * t.len()
-            }
-        },
-        2 * DISPLAY_BUDGET,
-        |t| lhs_string(t, style),
-    )
+    print::parallel::map(taus, side_work, 2 * DISPLAY_BUDGET, |t| {
+        lhs_string(t, style)
+    })
+}
+
+/// The work of printing an equation side, for [`print::parallel::map`]: its terms when printed from
+/// the normal form, far more when tidied (about the square of its terms).
+fn side_work(t: &Poly) -> usize {
+    if t.len() > DISPLAY_BUDGET {
+        t.len()
+    } else {
+        20 * t.len() * t.len()
+    }
 }
 
 /// [`lhs_side`] of every equation, on several threads as [`lhs_strings`].
 pub fn lhs_sides(taus: &[Poly]) -> Vec<Side> {
-    print::parallel::map(
-        taus,
-        |t| {
-            if t.len() > DISPLAY_BUDGET {
-                t.len()
-            } else {
-                20 * t.len() * t.len()
-            }
-        },
-        2 * DISPLAY_BUDGET,
-        lhs_side,
-    )
+    print::parallel::map(taus, side_work, 2 * DISPLAY_BUDGET, lhs_side)
 }
 
 /// The number of terms beyond which a quantity of a JSON document (`D`, `C`, `c_ijk`, `g`, `P`) is
