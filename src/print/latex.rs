@@ -10,7 +10,9 @@
 //! `\sin\left(q_{2}\right) \dot{q}_{1}`.
 
 use super::{names, Piece, Product};
+use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::{Expr, Func, Kind};
+use std::cell::RefCell;
 
 /// A whole expression, at the top level.
 pub(super) fn expr(e: &Expr) -> String {
@@ -102,11 +104,33 @@ fn factors(list: &[(Expr, i64)]) -> Vec<String> {
         .collect()
 }
 
+/// The most factors [`factor`] remembers per thread before it starts again.
+const FACTOR_MEMO: usize = 4096;
+
+thread_local! {
+    /// The functions [`factor`] has printed on this thread: a tidied sum repeats a few sines and
+    /// cosines of angle sums in most of its terms, each printed with its argument. A pure function's
+    /// results, so the text is the same whether or not they come from here.
+    static FUNCTIONS: RefCell<FxHashMap<(Expr, i64, bool), String>> = RefCell::default();
+}
+
 /// `base^{exp}` for a positive exponent; functions as `\sin^{2} q_{2}`. `guarded`: a non-function
 /// factor follows, so a function's argument needs its parentheses.
 pub(super) fn factor(base: &Expr, exp: i64, guarded: bool) -> String {
     if let Kind::Fun(f, arg) = base.kind() {
-        return function(*f, arg, exp, guarded);
+        let key = (base.clone(), exp, guarded);
+        if let Some(s) = FUNCTIONS.with(|m| m.borrow().get(&key).cloned()) {
+            return s;
+        }
+        let s = function(*f, arg, exp, guarded);
+        FUNCTIONS.with(|m| {
+            let mut m = m.borrow_mut();
+            if m.len() >= FACTOR_MEMO {
+                m.clear();
+            }
+            m.insert(key, s.clone());
+        });
+        return s;
     }
     let b = atom(base);
     if exp == 1 {
