@@ -68,22 +68,14 @@ impl Body {
                 after,
                 style,
             } => {
-                let sep = if *style == Style::Ascii { '*' } else { ' ' };
+                let sep = separator(*style);
                 if !before.is_empty() {
                     out.push_str(before);
                     out.push(sep);
                 }
-                out.push_str(if *style == Style::Latex {
-                    "\\left("
-                } else {
-                    "("
-                });
+                out.push_str(parentheses(*style).0);
                 write_terms(out, inner, true);
-                out.push_str(if *style == Style::Latex {
-                    "\\right)"
-                } else {
-                    ")"
-                });
+                out.push_str(parentheses(*style).1);
                 if !after.is_empty() {
                     out.push(sep);
                     out.push_str(after);
@@ -108,6 +100,24 @@ impl Body {
                     || inner.iter().any(|t| t.body.has_space())
             }
         }
+    }
+}
+
+/// The separator between a group's factors and its parentheses: `*` in ASCII, a space otherwise.
+fn separator(style: Style) -> char {
+    if style == Style::Ascii {
+        '*'
+    } else {
+        ' '
+    }
+}
+
+/// A group's opening and closing parentheses in `style`.
+fn parentheses(style: Style) -> (&'static str, &'static str) {
+    if style == Style::Latex {
+        ("\\left(", "\\right)")
+    } else {
+        ("(", ")")
     }
 }
 
@@ -454,15 +464,6 @@ impl Write {
     fn spaced(&mut self, yes: bool) {
         self.frames.last_mut().expect("a frame").spaced |= yes;
     }
-
-    /// The separator between a group's factors and its parentheses.
-    fn separator(&self) -> char {
-        if self.style == Style::Ascii {
-            '*'
-        } else {
-            ' '
-        }
-    }
 }
 
 impl Sink for Write {
@@ -481,13 +482,9 @@ impl Sink for Write {
             r.product_into(&mut self.out, &Rational::one(), before);
             let space = self.out.as_bytes()[start..].contains(&b' ');
             self.spaced(space || self.style != Style::Ascii);
-            self.out.push(self.separator());
+            self.out.push(separator(self.style));
         }
-        self.out.push_str(if self.style == Style::Latex {
-            "\\left("
-        } else {
-            "("
-        });
+        self.out.push_str(parentheses(self.style).0);
         self.frames.push(Frame {
             start: self.out.len(),
             ..Frame::default()
@@ -512,13 +509,9 @@ impl Sink for Write {
             self.out.push_str(&tail[from..]);
         }
         self.spaced(f.spaced);
-        self.out.push_str(if self.style == Style::Latex {
-            "\\right)"
-        } else {
-            ")"
-        });
+        self.out.push_str(parentheses(self.style).1);
         if !after.is_empty() {
-            self.out.push(self.separator());
+            self.out.push(separator(self.style));
             let start = self.out.len();
             r.product_into(&mut self.out, &Rational::one(), after);
             let space = self.out.as_bytes()[start..].contains(&b' ');
