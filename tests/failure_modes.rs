@@ -379,7 +379,7 @@ fn sizes(n: usize) -> Sizes {
             .flat_map(|v| v.0.iter()),
     );
     Sizes {
-        tau: terms(&lag.tau),
+        tau: terms(lag.tau.iter()),
         lagrange_intermediate,
         newton_euler_intermediate,
     }

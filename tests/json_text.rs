@@ -1,6 +1,6 @@
-//! `derive --format json` writes its documents with `report::to_pretty`, not serde_json: the text must
-//! be exactly serde_json's pretty text, on real documents (megabytes of expressions, nested arrays and
-//! objects, numbers, nulls, empty lists), by both methods.
+//! `derive --format json` writes its documents with `report::write_json`, not serde_json: the text
+//! must be exactly serde_json's pretty text of `report::json`, on real documents (megabytes of
+//! expressions, nested arrays and objects, numbers, nulls, empty lists), by both methods.
 
 use symdyn::dynamics::{Derivation, Frame};
 use symdyn::parse::{parse_robot, urdf::UrdfOptions};
@@ -27,6 +27,13 @@ fn documents_are_serde_jsons_pretty_text() {
             let want = serde_json::to_string_pretty(&doc).expect("JSON");
             assert!(want.len() > 1000, "{example}: a real document");
             assert_eq!(report::to_pretty(&doc), want, "{example} {method:?}");
+            // What `derive --format json` writes: the document printed stage by stage and written
+            // in pieces, without the Value; the same text and a line end.
+            let text = report::json_text(&der, method);
+            assert_eq!(text, format!("{want}\n"), "{example} {method:?}");
+            let mut written: Vec<u8> = Vec::new();
+            report::write_json(&der, method, &mut written).expect("a vector takes everything");
+            assert!(written == text.as_bytes(), "{example} {method:?}");
         }
     }
 }

@@ -136,7 +136,7 @@ fn tape_equals_eval_f64() {
         let mut rng = Rng(12345 + n as u64);
         let el = der.lagrange();
         let sets: [(&str, Vec<Poly>); 4] = [
-            ("tau", el.tau.clone()),
+            ("tau", el.tau.to_vec()),
             ("D", el.d.iter().flatten().cloned().collect()),
             ("C", el.c.iter().flatten().cloned().collect()),
             ("g", el.g.clone()),

@@ -27,7 +27,7 @@ fn with_extras(text: &str, extras: &str) -> Robot {
 }
 
 fn tau(robot: Robot) -> Vec<Poly> {
-    Derivation::new(robot).unwrap().lagrange().tau.clone()
+    Derivation::new(robot).unwrap().lagrange().tau.to_vec()
 }
 
 fn p(s: &str) -> Poly {

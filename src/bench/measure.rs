@@ -183,7 +183,7 @@ pub fn measure(
             let secs = t.elapsed().as_secs_f64();
             Ok(vec![with_size(
                 ok(method.name(), secs),
-                Size::of_polys(&el.tau),
+                Size::of_polys(el.tau.iter()),
             )])
         }
         Method::NewtonEuler => {
@@ -269,7 +269,7 @@ pub fn measure(
             let der = derivation(spec, robot)?;
             let el = der.lagrange();
             let polys: Vec<_> = if method == Method::EvalTau {
-                el.tau.clone()
+                el.tau.to_vec()
             } else {
                 el.d.iter().flatten().cloned().collect()
             };

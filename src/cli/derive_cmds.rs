@@ -143,11 +143,9 @@ pub fn derive(
         }
         Format::Latex => report::equations(&der, method, Style::Latex),
         Format::Json => {
-            let doc = report::json(&der, method);
-            let mut text = report::to_pretty(&doc);
-            text.push('\n');
-            std::mem::forget(doc);
-            text
+            // Written to stdout here, a piece at a time; nothing is left for the caller to print.
+            super::output::stdout_with(|out| report::write_json(&der, method, out))?;
+            String::new()
         }
     };
     leave(der);

@@ -221,7 +221,7 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
     let labels =
         |prefix: &str| -> Vec<String> { (1..=n).map(|i| format!("{prefix}{i}")).collect() };
     let (polys, shape): (Vec<Poly>, Shape) = match what {
-        What::Tau => (lag.tau.clone(), Shape::Vector(robot.inputs.clone())),
+        What::Tau => (lag.tau.to_vec(), Shape::Vector(robot.inputs.clone())),
         What::M => (flat(&lag.d), Shape::Matrix(n)),
         What::C => (flat(&lag.c), Shape::Matrix(n)),
         What::G => (lag.g.clone(), Shape::Vector(labels("g"))),

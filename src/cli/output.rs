@@ -10,8 +10,16 @@ use std::io::{ErrorKind, Write};
 
 /// Writes `text` to stdout and flushes it; a closed pipe is [`CliError::StdoutClosed`].
 pub fn stdout(text: &str) -> Result<(), CliError> {
+    stdout_with(|out| out.write_all(text.as_bytes()))
+}
+
+/// Lets `write` write to stdout (in pieces, for a large output), then flushes it; a closed pipe is
+/// [`CliError::StdoutClosed`].
+pub fn stdout_with(
+    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
-    out.write_all(text.as_bytes())
+    write(&mut out)
         .and_then(|()| out.flush())
         .map_err(|source| match source.kind() {
             ErrorKind::BrokenPipe => CliError::StdoutClosed,

@@ -4,12 +4,14 @@
 use super::compact::CompactDynamics;
 use super::facts::{Fact, Warning};
 use super::kinematics::{joint_frame, JointFrame, Kinematics};
-use super::lagrange::Lagrange;
+use super::lagrange::{
+    christoffel_symbols, coriolis_matrix, Christoffel, Lagrange, MassMatrix, Motion,
+};
 use super::model::{JointKind, ModelError, Robot};
 use super::ne_symbolic::{self, Frame};
 use super::newton_euler::NewtonEuler;
 use crate::algebra::{Expr, Poly, Symbol};
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// A robot and everything derived from it.
 #[derive(Debug)]
@@ -18,6 +20,10 @@ pub struct Derivation {
     joints: Vec<JointFrame>,
     rotates: Vec<bool>,
     kin: OnceLock<Kinematics>,
+    mass: OnceLock<MassMatrix>,
+    christoffel: OnceLock<Arc<Christoffel>>,
+    motion: OnceLock<Motion>,
+    coriolis: OnceLock<Arc<Vec<Vec<Poly>>>>,
     lagrange: OnceLock<Lagrange>,
     ne_body: OnceLock<NewtonEuler<Poly>>,
     ne_inertial: OnceLock<NewtonEuler<Poly>>,
@@ -51,6 +57,10 @@ impl Derivation {
             joints,
             rotates,
             kin: OnceLock::new(),
+            mass: OnceLock::new(),
+            christoffel: OnceLock::new(),
+            motion: OnceLock::new(),
+            coriolis: OnceLock::new(),
             lagrange: OnceLock::new(),
             ne_body: OnceLock::new(),
             ne_inertial: OnceLock::new(),
@@ -79,10 +89,56 @@ impl Derivation {
         &self.rotates
     }
 
-    /// The Euler–Lagrange quantities.
+    /// The Euler–Lagrange quantities: the stages below, then `K` ([`Lagrange::assemble`]).
     pub fn lagrange(&self) -> &Lagrange {
-        self.lagrange
-            .get_or_init(|| Lagrange::derive(&self.robot, self.kinematics()))
+        self.lagrange.get_or_init(|| {
+            Lagrange::assemble(
+                self.mass_matrix(),
+                self.christoffel_cell(),
+                self.motion(),
+                self.coriolis_cell(),
+            )
+        })
+    }
+
+    /// The first Euler–Lagrange stage, `D(q)`. Each stage is kept once derived, and a caller on
+    /// another thread may wait for it (and print it) while this one derives the next.
+    pub fn mass_matrix(&self) -> &MassMatrix {
+        self.mass
+            .get_or_init(|| MassMatrix::derive(&self.robot, self.kinematics()))
+    }
+
+    /// The second Euler–Lagrange stage, the Christoffel symbols `c[i][j][k] = c_ijk` (0-based).
+    pub fn christoffel(&self) -> &Christoffel {
+        self.christoffel_cell()
+    }
+
+    fn christoffel_cell(&self) -> &Arc<Christoffel> {
+        self.christoffel
+            .get_or_init(|| Arc::new(christoffel_symbols(self.mass_matrix())))
+    }
+
+    /// `C(q, q̇)`, from the Christoffel symbols (derived after [`Derivation::motion`] when both are
+    /// asked for by [`Derivation::lagrange`]).
+    pub fn coriolis(&self) -> &[Vec<Poly>] {
+        self.coriolis_cell()
+    }
+
+    fn coriolis_cell(&self) -> &Arc<Vec<Vec<Poly>>> {
+        self.coriolis
+            .get_or_init(|| Arc::new(coriolis_matrix(self.christoffel())))
+    }
+
+    /// The third Euler–Lagrange stage: `P`, `g(q)` and the left sides `τ`.
+    pub fn motion(&self) -> &Motion {
+        self.motion.get_or_init(|| {
+            Motion::derive(
+                &self.robot,
+                self.kinematics(),
+                self.mass_matrix(),
+                self.christoffel(),
+            )
+        })
     }
 
     /// The Newton–Euler quantities in `frame`.
@@ -124,8 +180,8 @@ impl Derivation {
             }
         }
         // Read off the expanded D when it is already derived; else decide on the compact one.
-        let d_constant = match self.lagrange.get() {
-            Some(el) => el.d_constant,
+        let d_constant = match self.mass.get() {
+            Some(mass) => mass.constant,
             None => self.compact().d_constant,
         };
         if d_constant {

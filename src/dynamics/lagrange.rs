@@ -20,18 +20,21 @@ use super::model::Robot;
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::calculus::poly_diff;
 use crate::algebra::{to_poly, Poly, Rational, Symbol};
+use std::sync::Arc;
 
-/// Every quantity of the Euler–Lagrange derivation.
+/// Every quantity of the Euler–Lagrange derivation. Derived in stages, each usable as soon as it
+/// exists ([`MassMatrix`], then [`christoffel_symbols`], then [`Motion`] and [`coriolis_matrix`]),
+/// and assembled with `K` ([`Lagrange::assemble`]); the large stages are shared, not copied.
 #[derive(Clone, Debug)]
 pub struct Lagrange {
     /// `D(q)`, symmetric.
-    pub d: Vec<Vec<Poly>>,
+    pub d: Arc<Vec<Vec<Poly>>>,
     /// Whether `D` is constant (then every Christoffel symbol is zero and was not computed).
     pub d_constant: bool,
     /// `c[i][j][k] = c_ijk`, symmetric in `i, j`.
-    pub christoffel: Vec<Vec<Vec<Poly>>>,
+    pub christoffel: Arc<Christoffel>,
     /// `C(q, q̇)`.
-    pub c: Vec<Vec<Poly>>,
+    pub c: Arc<Vec<Vec<Poly>>>,
     /// The potential energy `P`.
     pub p: Poly,
     /// `g(q) = ∂P/∂q`.
@@ -39,9 +42,32 @@ pub struct Lagrange {
     /// The kinetic energy `K = ½ q̇ᵀ D q̇`.
     pub k: Poly,
     /// The left side of equation `k`: `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k`.
-    pub tau: Vec<Poly>,
+    pub tau: Arc<Vec<Poly>>,
     /// The structural facts used.
     pub facts: Vec<Fact>,
+}
+
+/// The Christoffel symbols `c[i][j][k] = c_ijk` (0-based), symmetric in `i, j`.
+pub type Christoffel = Vec<Vec<Vec<Poly>>>;
+
+/// The first stage: `D(q)` and whether it is constant.
+#[derive(Clone, Debug)]
+pub struct MassMatrix {
+    /// `D(q)`, symmetric.
+    pub d: Arc<Vec<Vec<Poly>>>,
+    /// Whether no entry depends on a joint position.
+    pub constant: bool,
+}
+
+/// The third stage: the potential, gravity and the left sides of the equations.
+#[derive(Clone, Debug)]
+pub struct Motion {
+    /// The potential energy `P`.
+    pub p: Poly,
+    /// `g(q) = ∂P/∂q`.
+    pub g: Vec<Poly>,
+    /// The left side of equation `k`: `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k` (+ friction).
+    pub tau: Arc<Vec<Poly>>,
 }
 
 fn is_constant(p: &Poly) -> bool {
@@ -78,11 +104,17 @@ fn quad(u: &Vec3<Poly>, m: &Mat3<Poly>, v: &Vec3<Poly>) -> Poly {
     u.dot(&m.mul_vec(v))
 }
 
-impl Lagrange {
-    /// Derives the Euler–Lagrange quantities from the robot and its kinematics.
-    pub fn derive(robot: &Robot, kin: &Kinematics) -> Lagrange {
+/// A tensor given as expressions, as polynomials.
+fn tensor_poly(t: &[[crate::algebra::Expr; 3]; 3]) -> Mat3<Poly> {
+    Mat3(std::array::from_fn(|r| {
+        std::array::from_fn(|c| to_poly(&t[r][c]))
+    }))
+}
+
+impl MassMatrix {
+    /// `D(q) = Σ_i m_i J_v,iᵀ J_v,i + J_ω,iᵀ R_i I_i R_iᵀ J_ω,i` (+ payload, + reflected rotors).
+    pub fn derive(robot: &Robot, kin: &Kinematics) -> MassMatrix {
         let n = robot.dof();
-        let mut facts = Vec::new();
         // The rotational term J_ω,iᵀ (R_i I_i R_iᵀ) J_ω,i, for the links that rotate and have an
         // inertia, as (R_iᵀ J_ω,i)ᵀ I_i (R_iᵀ J_ω,i): the joint axes seen from link i, where the tensor
         // is given, so the large expanded R_i I_i R_iᵀ is never formed (same polynomials).
@@ -92,10 +124,7 @@ impl Lagrange {
                 if !kin.rotates[i] {
                     return None;
                 }
-                let local = Mat3(std::array::from_fn(|r| {
-                    std::array::from_fn(|c| to_poly(&tensor[r][c]))
-                }));
-                Some((local, local_axes(kin, i)))
+                Some((tensor_poly(tensor), local_axes(kin, i)))
             })
             .collect();
         let masses: Vec<Poly> = robot.links.iter().map(|l| to_poly(&l.mass)).collect();
@@ -106,13 +135,10 @@ impl Lagrange {
             .zip(kin.payload.as_ref())
             .map(|(l, (_, jv))| {
                 let rot = l.inertia.as_ref().filter(|_| kin.rotates[n - 1]).map(|t| {
-                    let local = Mat3(std::array::from_fn(|r| {
-                        std::array::from_fn(|c| to_poly(&t[r][c]))
-                    }));
                     let axes = rotational[n - 1]
                         .as_ref()
                         .map_or_else(|| local_axes(kin, n - 1), |(_, axes)| axes.clone());
-                    (local, axes)
+                    (tensor_poly(t), axes)
                 });
                 (to_poly(&l.mass), jv, rot)
             });
@@ -156,7 +182,85 @@ impl Lagrange {
                 d[k][j] = entry;
             }
         }
-        let d_constant = d.iter().flatten().all(is_constant);
+        let constant = d.iter().flatten().all(is_constant);
+        MassMatrix {
+            d: Arc::new(d),
+            constant,
+        }
+    }
+}
+
+/// The second stage: `c_ijk = ½ (∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)`, all zero (and not computed)
+/// when `D` is constant.
+pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
+    let d = &mass.d;
+    let n = d.len();
+    let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
+    if mass.constant {
+        return christoffel;
+    }
+    let qs: Vec<Symbol> = (1..=n as u32).map(Symbol::q).collect();
+    // ∂D/∂q_i, for the upper triangle only (D is symmetric, so is each ∂D/∂q_i):
+    // `dd[i][a][b - a]` is ∂d_ab/∂q_i for a ≤ b.
+    let dd: Vec<Vec<Vec<Poly>>> = qs
+        .iter()
+        .map(|q| {
+            d.iter()
+                .enumerate()
+                .map(|(a, row)| row[a..].iter().map(|e| poly_diff(e, q)).collect())
+                .collect()
+        })
+        .collect();
+    let dd_at = |i: usize, a: usize, b: usize| -> &Poly {
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        &dd[i][a][b - a]
+    };
+    let half = Rational::new(1, 2).expect("non-zero");
+    for i in 0..n {
+        for j in i..n {
+            for k in 0..n {
+                let c = dd_at(i, k, j)
+                    .add(dd_at(j, k, i))
+                    .sub(dd_at(k, i, j))
+                    .scale(&half);
+                christoffel[j][i][k] = c.clone();
+                christoffel[i][j][k] = c;
+            }
+        }
+    }
+    christoffel
+}
+
+/// `C(q, q̇)`: `c_kj = Σ_i c_ijk q̇_i`.
+pub fn coriolis_matrix(christoffel: &Christoffel) -> Vec<Vec<Poly>> {
+    let n = christoffel.len();
+    let qds: Vec<Poly> = (1..=n as u32)
+        .map(|i| Poly::symbol(&Symbol::qd(i)))
+        .collect();
+    (0..n)
+        .map(|k| {
+            (0..n)
+                .map(|j| {
+                    let parts: Vec<Poly> =
+                        (0..n).map(|i| christoffel[i][j][k].mul(&qds[i])).collect();
+                    Poly::sum(&parts)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+impl Motion {
+    /// `P = −Σ_i m_i gᵀ p_ci` (+ payload), `g_k = ∂P/∂q_k`, and the left sides
+    /// `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k` (+ the drive's friction).
+    pub fn derive(
+        robot: &Robot,
+        kin: &Kinematics,
+        mass: &MassMatrix,
+        christoffel: &Christoffel,
+    ) -> Motion {
+        let n = robot.dof();
+        let d = &mass.d;
         let qs: Vec<Symbol> = (1..=n as u32).map(Symbol::q).collect();
         let qds: Vec<Poly> = (1..=n as u32)
             .map(|i| Poly::symbol(&Symbol::qd(i)))
@@ -164,78 +268,19 @@ impl Lagrange {
         let qdds: Vec<Poly> = (1..=n as u32)
             .map(|i| Poly::symbol(&Symbol::qdd(i)))
             .collect();
-        let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
-        if d_constant {
-            facts.push(Fact::ConstantMassMatrix);
-        } else {
-            // ∂D/∂q_i, for the upper triangle only (D is symmetric, so is each ∂D/∂q_i):
-            // `dd[i][a][b - a]` is ∂d_ab/∂q_i for a ≤ b.
-            let dd: Vec<Vec<Vec<Poly>>> = qs
-                .iter()
-                .map(|q| {
-                    d.iter()
-                        .enumerate()
-                        .map(|(a, row)| row[a..].iter().map(|e| poly_diff(e, q)).collect())
-                        .collect()
-                })
-                .collect();
-            let dd_at = |i: usize, a: usize, b: usize| -> &Poly {
-                let (a, b) = if a <= b { (a, b) } else { (b, a) };
-                &dd[i][a][b - a]
-            };
-            let half = Rational::new(1, 2).expect("non-zero");
-            for i in 0..n {
-                for j in i..n {
-                    for k in 0..n {
-                        let c = dd_at(i, k, j)
-                            .add(dd_at(j, k, i))
-                            .sub(dd_at(k, i, j))
-                            .scale(&half);
-                        christoffel[j][i][k] = c.clone();
-                        christoffel[i][j][k] = c;
-                    }
-                }
-            }
-        }
-        let c: Vec<Vec<Poly>> = (0..n)
-            .map(|k| {
-                (0..n)
-                    .map(|j| {
-                        let parts: Vec<Poly> =
-                            (0..n).map(|i| christoffel[i][j][k].mul(&qds[i])).collect();
-                        Poly::sum(&parts)
-                    })
-                    .collect()
-            })
-            .collect();
         let gravity: Vec3<Poly> = Vec3(std::array::from_fn(|k| to_poly(&robot.gravity[k])));
         let mut p_parts: Vec<Poly> = (0..n)
-            .map(|i| masses[i].mul(&gravity.dot(&kin.com0[i])).neg())
+            .map(|i| {
+                to_poly(&robot.links[i].mass)
+                    .mul(&gravity.dot(&kin.com0[i]))
+                    .neg()
+            })
             .collect();
-        if let Some(((mass, _, _), (com0, _))) = payload.as_ref().zip(kin.payload.as_ref()) {
-            p_parts.push(mass.mul(&gravity.dot(com0)).neg());
+        if let Some((l, (com0, _))) = robot.payload.as_ref().zip(kin.payload.as_ref()) {
+            p_parts.push(to_poly(&l.mass).mul(&gravity.dot(com0)).neg());
         }
         let p = Poly::sum(&p_parts);
         let g: Vec<Poly> = qs.iter().map(|q| poly_diff(&p, q)).collect();
-        // K = ½ Σ_a d_aa q̇_a² + Σ_{a<b} d_ab q̇_a q̇_b (D is symmetric).
-        let half = Rational::new(1, 2).expect("non-zero");
-        let k_parts: Vec<Poly> = (0..n)
-            .flat_map(|a| {
-                let d = &d;
-                let qds = &qds;
-                let half = &half;
-                (a..n).map(move |b| {
-                    let rates = qds[a].mul(&qds[b]);
-                    let part = d[a][b].mul(&rates);
-                    if a == b {
-                        part.scale(half)
-                    } else {
-                        part
-                    }
-                })
-            })
-            .collect();
-        let k = Poly::sum(&k_parts);
         // Σ_j c_kj q̇_j = Σ_ij c_ijk q̇_i q̇_j = Σ_i c_iik q̇_i² + Σ_{i<j} 2 c_ijk q̇_i q̇_j (c_ijk = c_jik):
         // one product per unordered pair, and no two products share a monomial (no c_ijk contains a
         // q̇), so the sum only merges.
@@ -263,33 +308,89 @@ impl Lagrange {
                 Poly::sum(&parts)
             })
             .collect();
-        Lagrange {
-            d,
-            d_constant,
-            christoffel,
-            c,
+        Motion {
             p,
             g,
+            tau: Arc::new(tau),
+        }
+    }
+}
+
+impl Lagrange {
+    /// Derives the Euler–Lagrange quantities from the robot and its kinematics, stage by stage.
+    pub fn derive(robot: &Robot, kin: &Kinematics) -> Lagrange {
+        let mass = MassMatrix::derive(robot, kin);
+        let christoffel = Arc::new(christoffel_symbols(&mass));
+        let motion = Motion::derive(robot, kin, &mass, &christoffel);
+        let coriolis = Arc::new(coriolis_matrix(&christoffel));
+        Lagrange::assemble(&mass, &christoffel, &motion, &coriolis)
+    }
+
+    /// The quantities from the stages, with `K = ½ q̇ᵀ D q̇` computed here; the stages are shared,
+    /// not copied.
+    pub fn assemble(
+        mass: &MassMatrix,
+        christoffel: &Arc<Christoffel>,
+        motion: &Motion,
+        coriolis: &Arc<Vec<Vec<Poly>>>,
+    ) -> Lagrange {
+        let d = &mass.d;
+        let n = d.len();
+        let qds: Vec<Poly> = (1..=n as u32)
+            .map(|i| Poly::symbol(&Symbol::qd(i)))
+            .collect();
+        let mut facts = Vec::new();
+        if mass.constant {
+            facts.push(Fact::ConstantMassMatrix);
+        }
+        // K = ½ Σ_a d_aa q̇_a² + Σ_{a<b} d_ab q̇_a q̇_b (D is symmetric).
+        let half = Rational::new(1, 2).expect("non-zero");
+        let k_parts: Vec<Poly> = (0..n)
+            .flat_map(|a| {
+                let qds = &qds;
+                let half = &half;
+                (a..n).map(move |b| {
+                    let rates = qds[a].mul(&qds[b]);
+                    let part = d[a][b].mul(&rates);
+                    if a == b {
+                        part.scale(half)
+                    } else {
+                        part
+                    }
+                })
+            })
+            .collect();
+        let k = Poly::sum(&k_parts);
+        Lagrange {
+            d: Arc::clone(&mass.d),
+            d_constant: mass.constant,
+            christoffel: Arc::clone(christoffel),
+            c: Arc::clone(coriolis),
+            p: motion.p.clone(),
+            g: motion.g.clone(),
             k,
-            tau,
+            tau: Arc::clone(&motion.tau),
             facts,
         }
     }
 
     /// The non-zero Christoffel symbols `(i, j, k, c_ijk)`, 1-based, in index order.
     pub fn nonzero_christoffel(&self) -> Vec<(usize, usize, usize, &Poly)> {
-        let n = self.d.len();
-        let mut out = Vec::new();
-        for i in 0..n {
-            for j in 0..n {
-                for k in 0..n {
-                    let c = &self.christoffel[i][j][k];
-                    if !c.is_zero() {
-                        out.push((i + 1, j + 1, k + 1, c));
-                    }
+        nonzero_christoffel(&self.christoffel)
+    }
+}
+
+/// The non-zero Christoffel symbols `(i, j, k, c_ijk)`, 1-based, in index order.
+pub fn nonzero_christoffel(christoffel: &Christoffel) -> Vec<(usize, usize, usize, &Poly)> {
+    let mut out = Vec::new();
+    for (i, plane) in christoffel.iter().enumerate() {
+        for (j, row) in plane.iter().enumerate() {
+            for (k, c) in row.iter().enumerate() {
+                if !c.is_zero() {
+                    out.push((i + 1, j + 1, k + 1, c));
                 }
             }
         }
-        out
     }
+    out
 }

@@ -67,7 +67,7 @@ impl Dynamics {
             .d
             .iter()
             .flatten()
-            .chain(&lagrange.tau)
+            .chain(lagrange.tau.iter())
             .cloned()
             .collect();
         let eval = compile(&polys, n)?.bind(params)?;

@@ -59,7 +59,7 @@ impl Body {
     }
 
     /// [`Body::text`], appended to `out`.
-    fn write(&self, out: &mut String) {
+    pub fn write(&self, out: &mut String) {
         match self {
             Body::Product(s) => out.push_str(s),
             Body::Group {

@@ -219,6 +219,175 @@ impl PreparedVector {
     }
 }
 
+/// An equation of [`Layout::equations`] printed and measured ahead of the layout: its right side, its
+/// left side on one line when the two fit a line, and its left side's terms with their widths (a
+/// group too wide for a line kept apart, to be abbreviated). Preparing is pure, so the equations of
+/// a document are prepared on several threads; only numbering the abbreviations and filling the
+/// rows runs in order ([`Layout::equations_prepared`]).
+#[derive(Clone, Debug)]
+pub struct PreparedEquation {
+    /// The right side's LaTeX.
+    rhs: String,
+    /// The left side on one line, when it fits beside the right side.
+    line: Option<String>,
+    /// The left side, for rows.
+    left: Left,
+    /// The bytes of its printed terms (to size the text it is written into).
+    bytes: usize,
+}
+
+/// A left side (or an abbreviated sum) as the rows are filled from it.
+#[derive(Clone, Debug)]
+enum Left {
+    /// Terms in the house style, printed while the rows are filled ([`Layout::lines`]).
+    Terms(Vec<Expr>),
+    /// Display terms of a large side, printed and measured.
+    Measured(MeasuredSum),
+}
+
+/// Display terms printed and measured for the room of their rows: their texts one after another in
+/// one string (so filling the rows copies slices and frees nothing term by term).
+#[derive(Clone, Debug, Default)]
+struct MeasuredSum {
+    text: String,
+    terms: Vec<Measured>,
+}
+
+/// A display term of a [`MeasuredSum`].
+#[derive(Clone, Debug)]
+struct Measured {
+    negative: bool,
+    body: MeasuredBody,
+}
+
+/// The magnitude of a [`Measured`] term.
+#[derive(Clone, Debug)]
+enum MeasuredBody {
+    /// Printed, at `start..end` of the sum's text, with its [`width`].
+    Text {
+        start: usize,
+        end: usize,
+        width: usize,
+    },
+    /// `before (inner) after`, too wide for its row: the layout names it, and gives `inner` (measured
+    /// for a row of its own) after the equations.
+    Wide {
+        before: String,
+        inner: MeasuredSum,
+        after: String,
+    },
+}
+
+/// The room left on a row for a sum that ends with `end`: room for `\quad` (2), the end, and an
+/// abbreviation's `\Xi_{k} = ` (6) on the first row.
+fn room_before(end: &str) -> usize {
+    BUDGET.saturating_sub(width(end) + 8).max(20)
+}
+
+/// Display terms printed and measured for rows of `room` units.
+fn measure(shown: Vec<Shown>, room: usize) -> MeasuredSum {
+    let mut sum = MeasuredSum {
+        text: String::with_capacity(shown.len() * 48),
+        terms: Vec::with_capacity(shown.len()),
+    };
+    for t in shown {
+        let wide = matches!(t.body, Body::Group { .. }) && shown_width(&t.body, room) > room;
+        let body = match t.body {
+            Body::Group {
+                before,
+                inner,
+                after,
+                ..
+            } if wide => MeasuredBody::Wide {
+                before,
+                inner: measure(inner, room_before("")),
+                after,
+            },
+            body => {
+                let start = sum.text.len();
+                match &body {
+                    Body::Product(s) => sum.text.push_str(s),
+                    group => group.write(&mut sum.text),
+                }
+                let end = sum.text.len();
+                MeasuredBody::Text {
+                    start,
+                    end,
+                    width: width(&sum.text[start..end]),
+                }
+            }
+        };
+        sum.terms.push(Measured {
+            negative: t.negative,
+            body,
+        });
+    }
+    sum
+}
+
+/// The bytes of a measured sum's texts, its signs and abbreviated sums.
+fn measured_bytes(sum: &MeasuredSum) -> usize {
+    sum.text.len()
+        + sum
+            .terms
+            .iter()
+            .map(|t| {
+                3 + match &t.body {
+                    MeasuredBody::Text { .. } => 0,
+                    MeasuredBody::Wide {
+                        before,
+                        inner,
+                        after,
+                    } => before.len() + after.len() + 16 + measured_bytes(inner),
+                }
+            })
+            .sum::<usize>()
+}
+
+impl PreparedEquation {
+    /// `side = rhs` (`rhs` in LaTeX) printed and measured for [`Layout::equations_prepared`].
+    pub fn new(side: Side, rhs: String) -> PreparedEquation {
+        let fits = side.width_at_most(BUDGET) + 2 + width(&rhs) <= BUDGET;
+        let line = fits.then(|| side.latex());
+        let left = match side {
+            Side::Terms(terms) => Left::Terms(terms),
+            Side::Shown(shown) => Left::Measured(measure(shown, room_before(&format!(" = {rhs}")))),
+        };
+        let bytes = rhs.len()
+            + match &left {
+                Left::Terms(terms) => 32 * terms.len(),
+                Left::Measured(terms) => measured_bytes(terms),
+            };
+        PreparedEquation {
+            rhs,
+            line,
+            left,
+            bytes,
+        }
+    }
+}
+
+/// The lead of a row that continues a sum.
+const CONTINUED: &str = "  &\\quad ";
+
+/// The rows of an `align*` environment being written, separated by `\\`.
+struct Rows {
+    out: String,
+    /// Whether a row has been started.
+    any: bool,
+}
+
+impl Rows {
+    /// Starts a row with `lead`.
+    fn start(&mut self, lead: &str) {
+        if self.any {
+            self.out.push_str(" \\\\\n");
+        }
+        self.any = true;
+        self.out.push_str(lead);
+    }
+}
+
 impl Layout {
     /// A new layout, with no abbreviations yet.
     pub fn new() -> Layout {
@@ -330,151 +499,160 @@ impl Layout {
     /// rows of at most [`LINE_WIDTH`] (`  & t1 + t2`, `  &\quad + t3 = u_{1}`); a term wider than
     /// a line has its widest sum factor abbreviated (`\Xi_{1}`), given after `\intertext{where}`.
     pub fn equations(&mut self, equations: Vec<(Side, String)>) -> String {
-        // Every equation on one line? Measured without printing a side that cannot fit.
-        let fits = equations
-            .iter()
-            .all(|(side, rhs)| side.width_at_most(BUDGET) + 2 + width(rhs) <= BUDGET);
-        let rows: Vec<String> = if fits {
-            equations
-                .iter()
-                .map(|(side, r)| format!("  {} &= {r}", side.latex()))
-                .collect()
+        let prepared = equations
+            .into_iter()
+            .map(|(side, rhs)| PreparedEquation::new(side, rhs))
+            .collect();
+        self.equations_prepared(prepared)
+    }
+
+    /// [`Layout::equations`] of equations prepared ahead ([`PreparedEquation::new`], on any
+    /// thread): what is left is numbering the abbreviations and filling the rows, in order, written
+    /// straight into the environment's text.
+    pub fn equations_prepared(&mut self, equations: Vec<PreparedEquation>) -> String {
+        let bytes: usize = equations.iter().map(|e| e.bytes).sum();
+        let mut rows = Rows {
+            out: String::with_capacity(bytes + bytes / 8 + 64),
+            any: false,
+        };
+        rows.out.push_str("\\begin{align*}\n");
+        // Every equation on one line?
+        if equations.iter().all(|e| e.line.is_some()) {
+            for e in &equations {
+                rows.start("  ");
+                rows.out.push_str(e.line.as_deref().unwrap_or_default());
+                rows.out.push_str(" &= ");
+                rows.out.push_str(&e.rhs);
+            }
         } else {
-            let mut later: Vec<(String, Side)> = Vec::new();
-            let mut rows: Vec<String> = Vec::new();
-            for (side, rhs) in equations {
-                let end = format!(" = {rhs}");
-                rows.extend(self.left_rows(side, &end, &mut later));
+            let mut later: Vec<(String, Left)> = Vec::new();
+            for e in equations {
+                let end = format!(" = {}", e.rhs);
+                self.left_rows(&mut rows, e.left, "  & ", &end, &mut later);
             }
             let mut first = true;
             while !later.is_empty() {
                 for (name, side) in std::mem::take(&mut later) {
-                    let start = format!("{name} = ");
-                    let mut these = self.left_rows(side, "", &mut later);
-                    these[0] = these[0].replacen("  & ", &format!("  & {start}"), 1);
-                    if first {
-                        these[0] = format!("  \\intertext{{where}}\n{}", these[0]);
+                    let lead = if first {
                         first = false;
-                    }
-                    rows.extend(these);
+                        format!("  \\intertext{{where}}\n  & {name} = ")
+                    } else {
+                        format!("  & {name} = ")
+                    };
+                    self.left_rows(&mut rows, side, &lead, "", &mut later);
                 }
             }
-            rows
-        };
-        let mut out = String::with_capacity(rows.iter().map(|r| r.len() + 4).sum::<usize>() + 32);
-        out.push_str("\\begin{align*}\n");
-        for (i, row) in rows.iter().enumerate() {
-            if i > 0 {
-                out.push_str(" \\\\\n");
-            }
-            out.push_str(row);
         }
-        out.push_str("\n\\end{align*}\n");
-        out
+        rows.out.push_str("\n\\end{align*}\n");
+        rows.out
     }
 
-    /// The rows `  & line` and `  &\quad line` of one left-aligned sum ending with `end`, each at
-    /// most [`LINE_WIDTH`] wide.
-    fn left_rows(&mut self, side: Side, end: &str, later: &mut Vec<(String, Side)>) -> Vec<String> {
-        // Room for `\quad` (2), the end, and an abbreviation's `\Xi_{k} = ` (6) on the first row.
-        let room = BUDGET.saturating_sub(width(end) + 8).max(20);
-        let lines = match side {
-            Side::Terms(terms) => {
+    /// The rows of one left-aligned sum ending with `end`, each at most [`LINE_WIDTH`] wide: the
+    /// first `lead` and a line (`  & t1 + t2`), the others `  &\quad` and a line (`+ t3`).
+    fn left_rows(
+        &mut self,
+        rows: &mut Rows,
+        left: Left,
+        lead: &str,
+        end: &str,
+        later: &mut Vec<(String, Left)>,
+    ) {
+        let room = room_before(end);
+        match left {
+            Left::Terms(terms) => {
                 let mut exprs = Vec::new();
                 let lines = self.lines(printed(flat_terms(&terms)), room, &mut exprs);
-                later.extend(exprs.into_iter().map(|(n, e)| (n, Side::Terms(vec![e]))));
-                lines
-            }
-            Side::Shown(shown) => self.shown_lines(shown, room, later),
-        };
-        let last = lines.len() - 1;
-        lines
-            .iter()
-            .enumerate()
-            .map(|(i, line)| {
-                let end = if i == last { end } else { "" };
-                let mut row = String::with_capacity(line.len() + end.len() + 10);
-                if i == 0 {
-                    row.push_str("  & ");
-                    row.push_str(line);
-                } else {
-                    row.push_str("  &\\quad ");
-                    row.push_str(line.trim_start());
+                later.extend(exprs.into_iter().map(|(n, e)| (n, Left::Terms(vec![e]))));
+                for (i, line) in lines.iter().enumerate() {
+                    if i == 0 {
+                        rows.start(lead);
+                        rows.out.push_str(line);
+                    } else {
+                        rows.start(CONTINUED);
+                        rows.out.push_str(line.trim_start());
+                    }
                 }
-                row.push_str(end);
-                row
-            })
-            .collect()
+            }
+            Left::Measured(sum) => self.measured_rows(rows, sum, room, lead, later),
+        }
+        rows.out.push_str(end);
     }
 
-    /// Display terms as LaTeX lines of at most `room` width units, as [`Layout::lines`] lays out terms:
-    /// a group too wide for a line is abbreviated (`\Xi_{k}`) and its sum pushed onto `later`.
-    fn shown_lines(
+    /// Measured display terms as rows of at most `room` width units, as [`Layout::lines`] lays out
+    /// terms: a group too wide for a line is abbreviated (`\Xi_{k}`) and its sum pushed onto
+    /// `later`.
+    fn measured_rows(
         &mut self,
-        shown: Vec<Shown>,
+        rows: &mut Rows,
+        sum: MeasuredSum,
         room: usize,
-        later: &mut Vec<(String, Side)>,
-    ) -> Vec<String> {
-        let empty = shown.is_empty();
-        let pieces: Vec<(bool, String)> = shown
-            .into_iter()
-            .map(|t| {
-                let wide =
-                    matches!(t.body, Body::Group { .. }) && shown_width(&t.body, room) > room;
-                let body = match t.body {
-                    Body::Group {
-                        before,
-                        inner,
-                        after,
-                        ..
-                    } if wide => {
-                        self.abbreviations += 1;
-                        let name = print::to_string(
-                            &Expr::sym(Symbol::new(&format!("Xi{}", self.abbreviations))),
-                            Style::Latex,
-                        );
-                        let text = [before.as_str(), name.as_str(), after.as_str()]
-                            .iter()
-                            .filter(|s| !s.is_empty())
-                            .copied()
-                            .collect::<Vec<&str>>()
-                            .join(" ");
-                        later.push((name, Side::Shown(inner)));
-                        text
-                    }
-                    Body::Product(s) => s,
-                    group => group.text(),
-                };
-                (t.negative, body)
-            })
-            .collect();
-        let mut lines: Vec<String> = Vec::new();
-        let mut line = String::new();
+        lead: &str,
+        later: &mut Vec<(String, Left)>,
+    ) {
+        rows.start(lead);
+        if sum.terms.is_empty() {
+            rows.out.push('0');
+            return;
+        }
+        // Every abbreviation of the sum is numbered before any is given: its name, and the term's
+        // text and width with the name.
+        let mut names: Vec<String> = Vec::new();
+        let mut shortened: Vec<(String, usize)> = Vec::new();
+        for t in sum.terms.iter() {
+            if let MeasuredBody::Wide { before, after, .. } = &t.body {
+                self.abbreviations += 1;
+                let name = print::to_string(
+                    &Expr::sym(Symbol::new(&format!("Xi{}", self.abbreviations))),
+                    Style::Latex,
+                );
+                let text = [before.as_str(), name.as_str(), after.as_str()]
+                    .iter()
+                    .filter(|s| !s.is_empty())
+                    .copied()
+                    .collect::<Vec<&str>>()
+                    .join(" ");
+                let w = width(&text);
+                shortened.push((text, w));
+                names.push(name);
+            }
+        }
+        let mut next = shortened.iter();
+        // Whether the row has anything yet, and its width.
+        let mut filled = false;
         let mut used = 0;
-        for (i, (negative, body)) in pieces.iter().enumerate() {
+        for (i, t) in sum.terms.iter().enumerate() {
+            let (body, body_width) = match &t.body {
+                MeasuredBody::Text { start, end, width } => (&sum.text[*start..*end], *width),
+                MeasuredBody::Wide { .. } => {
+                    let (text, w) = next.next().expect("a name per abbreviation");
+                    (text.as_str(), *w)
+                }
+            };
             // The sign and its spaces: `-` first, ` + ` or ` - ` after (a sign is 2 units wide).
-            let sign = match (i, negative) {
+            let sign = match (i, t.negative) {
                 (0, false) => "",
                 (0, true) => "-",
                 (_, false) => " + ",
                 (_, true) => " - ",
             };
-            let w = width(body) + if sign.is_empty() { 0 } else { 2 };
-            if !line.is_empty() && used + w > room {
-                let capacity = 2 * line.len();
-                let full = std::mem::replace(&mut line, String::with_capacity(capacity));
-                lines.push(full);
+            let w = body_width + if sign.is_empty() { 0 } else { 2 };
+            if filled && used + w > room {
+                // A new row starts with the sign, without its leading space.
+                rows.start(CONTINUED);
+                rows.out.push_str(sign.trim_start());
                 used = 0;
+            } else {
+                rows.out.push_str(sign);
             }
             used += w;
-            line.push_str(sign);
-            line.push_str(body);
+            rows.out.push_str(body);
+            filled |= !sign.is_empty() || !body.is_empty();
         }
-        if empty {
-            line.push('0');
-        }
-        lines.push(line);
-        lines
+        let inners = sum.terms.into_iter().filter_map(|t| match t.body {
+            MeasuredBody::Wide { inner, .. } => Some(Left::Measured(inner)),
+            MeasuredBody::Text { .. } => None,
+        });
+        later.extend(names.into_iter().zip(inners));
     }
 
     /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.

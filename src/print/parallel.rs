@@ -8,8 +8,14 @@
 //! [`crate::algebra::atom`]): tidying works on canonical expressions, ordered structurally, and visits
 //! its candidates in that order (never by id or hash), so each result is the same expression
 //! whichever thread computes it and whenever.
+//!
+//! [`pipeline`] goes one step further: it prints the stages of a derivation (`D`, then the
+//! Christoffel symbols, then `τ`) on a helper thread while this thread derives the later ones, so
+//! printing a large robot's equations overlaps deriving them. The derivation and the printers then
+//! intern atoms concurrently too, under the same rule: ids order nothing that is printed.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
 
 /// The most threads a display job uses by default.
 const MAX_THREADS: usize = 4;
@@ -74,6 +80,82 @@ pub fn map<T: Sync, R: Send>(
     done.into_iter().map(|(_, r)| r).collect()
 }
 
+/// One stage of a [`pipeline`]: returns its items, and the context they are printed in, once their
+/// inputs exist (it may wait for another thread to derive them).
+pub type Stage<'a, C, T> = Box<dyn Fn() -> (C, Vec<T>) + Sync + 'a>;
+
+/// A stage's items once it has returned them, and the next of them to take.
+struct Ready<C, T> {
+    ctx: C,
+    items: Vec<T>,
+    /// Item indices, heaviest first (equal weights in item order).
+    order: Vec<usize>,
+    next: AtomicUsize,
+}
+
+/// `f` of every item of every stage, by stage and in item order, printed while this thread runs
+/// `work` (a derivation): a helper thread takes each stage's items as soon as the stage returns
+/// them, while later stages are still being derived, heaviest first; when `work` is done this
+/// thread joins in. On one thread, `work` runs first and the stages follow in order. The results
+/// are the same on any number of threads (`f` is pure).
+pub fn pipeline<C: Send + Sync, T: Send + Sync, R: Send>(
+    work: impl FnOnce(),
+    stages: &[Stage<'_, C, T>],
+    weight: impl Fn(&T) -> usize + Sync,
+    f: impl Fn(&C, &T) -> R + Sync,
+) -> Vec<Vec<R>> {
+    let threads = threads();
+    if threads < 2 {
+        work();
+        return stages
+            .iter()
+            .map(|stage| {
+                let (ctx, items) = stage();
+                items.iter().map(|t| f(&ctx, t)).collect()
+            })
+            .collect();
+    }
+    let ready: Vec<OnceLock<Ready<C, T>>> = stages.iter().map(|_| OnceLock::new()).collect();
+    let take = || {
+        let mut mine: Vec<(usize, usize, R)> = Vec::new();
+        for (s, stage) in stages.iter().enumerate() {
+            let r = ready[s].get_or_init(|| {
+                let (ctx, items) = stage();
+                let weights: Vec<usize> = items.iter().map(&weight).collect();
+                let mut order: Vec<usize> = (0..items.len()).collect();
+                order.sort_by(|&a, &b| weights[b].cmp(&weights[a]));
+                Ready {
+                    ctx,
+                    items,
+                    order,
+                    next: AtomicUsize::new(0),
+                }
+            });
+            loop {
+                let k = r.next.fetch_add(1, Ordering::Relaxed);
+                let Some(&i) = r.order.get(k) else { break };
+                mine.push((s, i, f(&r.ctx, &r.items[i])));
+            }
+        }
+        mine
+    };
+    let mut done = std::thread::scope(|scope| {
+        let helpers: Vec<_> = (1..threads).map(|_| scope.spawn(take)).collect();
+        work();
+        let mut done = take();
+        for h in helpers {
+            done.extend(h.join().expect("a display thread does not panic"));
+        }
+        done
+    });
+    done.sort_by_key(|&(s, i, _)| (s, i));
+    let mut out: Vec<Vec<R>> = stages.iter().map(|_| Vec::new()).collect();
+    for (s, _, r) in done {
+        out[s].push(r);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -89,5 +171,34 @@ mod tests {
         // Below the threshold: on this thread, the same.
         assert_eq!(map(&items, |_| 1, usize::MAX, work), want);
         assert!(map(&[] as &[u64], |_| 1, 0, work).is_empty());
+    }
+
+    #[test]
+    fn a_pipeline_prints_each_stage_in_order_once_its_inputs_exist() {
+        // `work` fills two cells in turn; each stage waits for its cell, as a stage of a
+        // derivation waits for the quantity it prints.
+        let first: OnceLock<Vec<u64>> = OnceLock::new();
+        let second: OnceLock<Vec<u64>> = OnceLock::new();
+        let wait = |cell: &OnceLock<Vec<u64>>| loop {
+            if let Some(v) = cell.get() {
+                return v.clone();
+            }
+            std::thread::yield_now();
+        };
+        let stages: Vec<Stage<'_, u64, u64>> = vec![
+            Box::new(|| (1, wait(&first))),
+            Box::new(|| (2, wait(&second))),
+        ];
+        let work = || {
+            first.set((0..50).collect()).unwrap();
+            second.set((50..120).collect()).unwrap();
+        };
+        let f = |c: &u64, n: &u64| c * 1000 + n * n % 97;
+        let got = pipeline(work, &stages, |&n| (n % 5) as usize, f);
+        let want: Vec<Vec<u64>> = vec![
+            (0..50).map(|n| f(&1, &n)).collect(),
+            (50..120).map(|n| f(&2, &n)).collect(),
+        ];
+        assert_eq!(got, want);
     }
 }

@@ -13,134 +13,268 @@
 //! `mass_matrix`, `coriolis`, `christoffel`, `gravity` and `potential` come from Euler–Lagrange;
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
+use super::pretty::{doc_to_pretty, write_pretty, Doc};
 use super::{lhs_string, quantity_string, tau, Method, JSON_TIDY_BUDGET};
 use crate::algebra::Poly;
+use crate::dynamics::lagrange::nonzero_christoffel;
 use crate::dynamics::Derivation;
-use crate::print::parallel;
+use crate::print::parallel::{self, Stage};
 use crate::print::poly::{poly_to_string, Ranks, Renderer};
 use crate::print::Style;
-use serde_json::{json as j, Value};
+use serde_json::Value;
 use std::collections::HashMap;
 
 /// One expression of a document to print.
 enum Job<'a> {
     /// An equation's left side ([`lhs_string`]).
     Lhs(&'a Poly),
-    /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the shared renderer.
+    /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the stage's shared renderer.
     Large(&'a Poly),
     /// A smaller quantity, tidied ([`quantity_string`]).
     Small(&'a Poly),
 }
 
-/// Every expression of a document printed in ASCII, in the order of `jobs`, on several threads
-/// ([`parallel::map`]: the text is the same on any number): the large quantities share one ranking
-/// of their atoms.
-fn print_all(jobs: &[Job]) -> Vec<String> {
-    let large: Vec<&Poly> = jobs
-        .iter()
-        .filter_map(|j| match j {
-            Job::Large(p) => Some(*p),
-            _ => None,
-        })
-        .collect();
-    let ranks = Ranks::of(large.iter().copied());
-    let weight = |j: &Job| match j {
-        Job::Lhs(p) | Job::Large(p) => p.len(),
-        // Tidying costs far more per term than printing.
-        Job::Small(p) => 20 * p.len() * p.len(),
-    };
-    parallel::map(jobs, weight, PARALLEL_WORK, |j| match j {
-        Job::Lhs(p) => lhs_string(p, Style::Ascii),
-        Job::Large(p) => match &ranks {
-            Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
-            None => poly_to_string(p, Style::Ascii),
-        },
-        Job::Small(p) => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
-    })
-}
-
-/// Below this much work in all ([`print_all`]'s weights), a document is printed on one thread.
-const PARALLEL_WORK: usize = 4000;
-
-/// The JSON document of a derivation.
-pub fn json(der: &Derivation, method: Method) -> Value {
-    let el = der.lagrange();
-    let (method_name, frame) = match method {
-        Method::Lagrange => ("lagrange", Value::Null),
-        Method::NewtonEuler(f) => ("newton-euler", Value::String(f.name().into())),
-    };
-    let taus = tau(der, method);
-    let nonzero = el.nonzero_christoffel();
-    let mut quantities: Vec<&Poly> = el.d.iter().chain(&el.c).flatten().collect();
-    // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
-    quantities.extend(
-        nonzero
-            .iter()
-            .filter(|(i, jj, _, _)| i <= jj)
-            .map(|(_, _, _, c)| *c),
-    );
-    quantities.extend(el.g.iter());
-    quantities.push(&el.p);
-    let jobs: Vec<Job> = taus
-        .iter()
-        .map(Job::Lhs)
-        .chain(quantities.iter().map(|&p| {
+/// The jobs of quantities (not left sides) printed together, and the ranking of their large ones'
+/// atoms, which the renderer shares (the text does not depend on which atoms are ranked with them).
+fn quantities<'a>(polys: impl IntoIterator<Item = &'a Poly>) -> (Option<Ranks>, Vec<Job<'a>>) {
+    let jobs: Vec<Job> = polys
+        .into_iter()
+        .map(|p| {
             if p.len() > JSON_TIDY_BUDGET {
                 Job::Large(p)
             } else {
                 Job::Small(p)
             }
-        }))
-        .collect();
-    let mut printed = print_all(&jobs).into_iter().map(Value::String);
-    let mut next = || printed.next().expect("one string per expression");
-    let lhs: Vec<Value> = taus.iter().map(|_| next()).collect();
-    let equations: Vec<Value> = lhs
-        .iter()
-        .zip(&der.robot().inputs)
-        .map(|(l, u)| j!({ "lhs": l, "rhs": u }))
-        .collect();
-    let n = el.d.len();
-    let mut matrix = |rows: usize| -> Value {
-        Value::Array(
-            (0..rows)
-                .map(|_| Value::Array((0..n).map(|_| next()).collect()))
-                .collect(),
-        )
-    };
-    let mass_matrix = matrix(el.d.len());
-    let coriolis = matrix(el.c.len());
-    // Printed for i ≤ j; (j, i, k) comes later in index order and takes (i, j, k)'s string.
-    let mut symbols: HashMap<(usize, usize, usize), Value> = HashMap::new();
-    let christoffel: Vec<Value> = nonzero
-        .iter()
-        .map(|&(i, jj, k, _)| {
-            let value = if i <= jj {
-                let v = next();
-                symbols.insert((i, jj, k), v.clone());
-                v
-            } else {
-                symbols[&(jj, i, k)].clone()
-            };
-            j!({ "i": i, "j": jj, "k": k, "value": value })
         })
         .collect();
-    let gravity: Vec<Value> = el.g.iter().map(|_| next()).collect();
-    let potential = next();
-    j!({
-        "robot": der.robot().name,
-        "method": method_name,
-        "frame": frame,
-        "coordinates": der.coordinates().iter().map(|s| s.ascii_name()).collect::<Vec<_>>(),
-        "inputs": der.robot().inputs,
-        "mass_matrix": mass_matrix,
-        "coriolis": coriolis,
-        "christoffel": christoffel,
-        "gravity": gravity,
-        "potential": potential,
-        "equations": equations,
-        "tau": lhs,
-        "facts": der.facts().iter().map(|f| f.to_string()).collect::<Vec<_>>(),
-        "warnings": der.warnings().iter().map(|w| w.to_string()).collect::<Vec<_>>(),
-    })
+    let ranks = Ranks::of(jobs.iter().filter_map(|j| match j {
+        Job::Large(p) => Some(*p),
+        _ => None,
+    }));
+    (ranks, jobs)
+}
+
+/// A job printed in ASCII.
+fn print(ranks: &Option<Ranks>, job: &Job) -> String {
+    match job {
+        Job::Lhs(p) => lhs_string(p, Style::Ascii),
+        Job::Large(p) => match ranks {
+            Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
+            None => poly_to_string(p, Style::Ascii),
+        },
+        Job::Small(p) => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
+    }
+}
+
+/// The cost of printing a job, for the order in which threads take them.
+fn weight(job: &Job) -> usize {
+    match job {
+        Job::Lhs(p) | Job::Large(p) => p.len(),
+        // Tidying costs far more per term than printing.
+        Job::Small(p) => 20 * p.len() * p.len(),
+    }
+}
+
+/// The expressions of a document, printed by stage.
+struct Printed {
+    /// `d_kj` for `k ≤ j`, row by row.
+    d_upper: Vec<String>,
+    /// The non-zero `c_ijk` with `i ≤ j`, in index order.
+    symbols: Vec<String>,
+    /// `g_1..g_n`, then `P`.
+    potential: Vec<String>,
+    /// The left sides.
+    lhs: Vec<String>,
+    /// `C`, row by row.
+    coriolis: Vec<String>,
+}
+
+/// The pairs `(k, j)` with `k ≤ j < n`, row by row.
+fn upper(n: usize) -> Vec<(usize, usize)> {
+    (0..n).flat_map(|k| (k..n).map(move |j| (k, j))).collect()
+}
+
+/// Every expression of the document, printed stage by stage as the derivation produces them
+/// ([`parallel::pipeline`]): `D` while the Christoffel symbols are derived, those while `τ` is, `τ`
+/// while `C` is; the text is the same on any number of threads.
+fn print_all(der: &Derivation, method: Method) -> Printed {
+    // The left sides by Euler–Lagrange come with P and g; by Newton–Euler, after C.
+    let lhs_stage = || (None, tau(der, method).iter().map(Job::Lhs).collect());
+    let mut stages: Vec<Stage<'_, Option<Ranks>, Job>> = vec![
+        // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
+        Box::new(|| {
+            let d = &der.mass_matrix().d;
+            quantities(upper(d.len()).into_iter().map(|(k, j)| &d[k][j]))
+        }),
+        // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
+        Box::new(|| {
+            quantities(
+                nonzero_christoffel(der.christoffel())
+                    .into_iter()
+                    .filter(|(i, jj, _, _)| i <= jj)
+                    .map(|(_, _, _, c)| c),
+            )
+        }),
+        Box::new(|| {
+            let motion = der.motion();
+            quantities(motion.g.iter().chain(std::iter::once(&motion.p)))
+        }),
+    ];
+    let lagrange = method == Method::Lagrange;
+    if lagrange {
+        stages.push(Box::new(lhs_stage));
+    }
+    stages.push(Box::new(|| quantities(der.coriolis().iter().flatten())));
+    if !lagrange {
+        stages.push(Box::new(lhs_stage));
+    }
+    // What the document prints: C, and τ by the chosen method (K is not printed).
+    let work = || {
+        der.motion();
+        der.coriolis();
+        tau(der, method);
+    };
+    let mut printed = parallel::pipeline(work, &stages, weight, print).into_iter();
+    let mut next = || printed.next().expect("one list per stage");
+    let (d_upper, symbols, potential) = (next(), next(), next());
+    let (lhs, coriolis) = if lagrange {
+        let lhs = next();
+        (lhs, next())
+    } else {
+        let coriolis = next();
+        (next(), coriolis)
+    };
+    Printed {
+        d_upper,
+        symbols,
+        potential,
+        lhs,
+        coriolis,
+    }
+}
+
+/// What a document says besides its expressions, owned here for [`document`] to borrow.
+struct Meta {
+    coordinates: Vec<String>,
+    facts: Vec<String>,
+    warnings: Vec<String>,
+    /// `0..=n`, the indices of the Christoffel symbols.
+    numbers: Vec<Value>,
+    frame: Value,
+}
+
+impl Meta {
+    fn new(der: &Derivation, method: Method) -> Meta {
+        Meta {
+            coordinates: der.coordinates().iter().map(|s| s.ascii_name()).collect(),
+            facts: der.facts().iter().map(|f| f.to_string()).collect(),
+            warnings: der.warnings().iter().map(|w| w.to_string()).collect(),
+            numbers: (0..=der.robot().dof()).map(Value::from).collect(),
+            frame: match method {
+                Method::Lagrange => Value::Null,
+                Method::NewtonEuler(f) => Value::String(f.name().into()),
+            },
+        }
+    }
+}
+
+/// The document of a derivation, borrowing its printed expressions.
+fn document<'a>(
+    der: &'a Derivation,
+    method: Method,
+    printed: &'a Printed,
+    meta: &'a Meta,
+) -> Doc<'a> {
+    let n = der.robot().dof();
+    let strs = |v: &'a [String]| Doc::Arr(v.iter().map(|s| Doc::Str(s)).collect());
+    let mut grid: Vec<Vec<Doc>> = vec![vec![Doc::Str(""); n]; n];
+    for ((k, j), s) in upper(n).into_iter().zip(&printed.d_upper) {
+        grid[j][k] = Doc::Str(s);
+        grid[k][j] = Doc::Str(s);
+    }
+    let mass_matrix = Doc::Arr(grid.into_iter().map(Doc::Arr).collect());
+    let coriolis = Doc::Arr(printed.coriolis.chunks(n.max(1)).map(strs).collect());
+    // Printed for i ≤ j; (j, i, k) comes later in index order and takes (i, j, k)'s string.
+    let mut symbols = printed.symbols.iter();
+    let mut seen: HashMap<(usize, usize, usize), &str> = HashMap::new();
+    let christoffel: Vec<Doc> = nonzero_christoffel(der.christoffel())
+        .iter()
+        .map(|&(i, jj, k, _)| {
+            let value: &str = if i <= jj {
+                let v = symbols.next().expect("one string per symbol");
+                seen.insert((i, jj, k), v);
+                v
+            } else {
+                seen[&(jj, i, k)]
+            };
+            Doc::Obj(vec![
+                ("i", Doc::Scalar(&meta.numbers[i])),
+                ("j", Doc::Scalar(&meta.numbers[jj])),
+                ("k", Doc::Scalar(&meta.numbers[k])),
+                ("value", Doc::Str(value)),
+            ])
+        })
+        .collect();
+    let (potential, gravity) = printed
+        .potential
+        .split_last()
+        .expect("P is printed after g");
+    let inputs = &der.robot().inputs;
+    let equations: Vec<Doc> = printed
+        .lhs
+        .iter()
+        .zip(inputs)
+        .map(|(l, u)| Doc::Obj(vec![("lhs", Doc::Str(l)), ("rhs", Doc::Str(u))]))
+        .collect();
+    let method_name = match method {
+        Method::Lagrange => "lagrange",
+        Method::NewtonEuler(_) => "newton-euler",
+    };
+    Doc::Obj(vec![
+        ("robot", Doc::Str(&der.robot().name)),
+        ("method", Doc::Str(method_name)),
+        ("frame", Doc::Scalar(&meta.frame)),
+        ("coordinates", strs(&meta.coordinates)),
+        ("inputs", strs(inputs)),
+        ("mass_matrix", mass_matrix),
+        ("coriolis", coriolis),
+        ("christoffel", Doc::Arr(christoffel)),
+        ("gravity", strs(gravity)),
+        ("potential", Doc::Str(potential)),
+        ("equations", Doc::Arr(equations)),
+        ("tau", strs(&printed.lhs)),
+        ("facts", strs(&meta.facts)),
+        ("warnings", strs(&meta.warnings)),
+    ])
+}
+
+/// The JSON document of a derivation.
+pub fn json(der: &Derivation, method: Method) -> Value {
+    let printed = print_all(der, method);
+    let meta = Meta::new(der, method);
+    Value::from(&document(der, method, &printed, &meta))
+}
+
+/// [`json`] as serde_json's pretty text and a line end, written from the printed expressions
+/// without building the [`Value`].
+pub fn json_text(der: &Derivation, method: Method) -> String {
+    let printed = print_all(der, method);
+    let meta = Meta::new(der, method);
+    let doc = document(der, method, &printed, &meta);
+    let mut text = doc_to_pretty(&doc);
+    text.push('\n');
+    text
+}
+
+/// [`json_text`] written to `sink` a piece at a time ([`write_pretty`]; what `symdyn derive
+/// --format json` prints): the megabytes of a large robot's document are never copied into one
+/// string.
+pub fn write_json(
+    der: &Derivation,
+    method: Method,
+    sink: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    let printed = print_all(der, method);
+    let meta = Meta::new(der, method);
+    write_pretty(&document(der, method, &printed, &meta), sink)
 }

@@ -9,14 +9,14 @@ pub use compact::{
     lagrange_json as compact_lagrange_json, lagrange_program as compact_lagrange,
     program as compact_program, program_json as compact_json,
 };
-pub use json::json;
-pub use pretty::to_pretty;
+pub use json::{json, json_text, write_json};
+pub use pretty::{doc_to_pretty, to_pretty, write_pretty, Doc};
 
 use crate::algebra::tidy::equation_terms_poly;
 use crate::algebra::{Expr, Poly, Symbol};
 use crate::dynamics::check::Claim;
 use crate::dynamics::{Derivation, Frame};
-use crate::print::layout::{Layout, Side};
+use crate::print::layout::{Layout, PreparedEquation, Side};
 use crate::print::{self, Style};
 
 /// Which formulation gives the equations.
@@ -28,10 +28,11 @@ pub enum Method {
     NewtonEuler(Frame),
 }
 
-/// The left sides `τ_k` of the equations by the chosen method.
+/// The left sides `τ_k` of the equations by the chosen method (by Euler–Lagrange, as soon as its
+/// third stage is derived, before `C` and `K`).
 pub fn tau(der: &Derivation, method: Method) -> &[Poly] {
     match method {
-        Method::Lagrange => &der.lagrange().tau,
+        Method::Lagrange => &der.motion().tau,
         Method::NewtonEuler(frame) => &der.newton_euler(frame).tau,
     }
 }
@@ -78,9 +79,16 @@ fn side_work(t: &Poly) -> usize {
     }
 }
 
-/// [`lhs_side`] of every equation, on several threads as [`lhs_strings`].
-pub fn lhs_sides(taus: &[Poly]) -> Vec<Side> {
-    print::parallel::map(taus, side_work, 2 * DISPLAY_BUDGET, lhs_side)
+/// Every equation `τ_k = rhs_k` prepared for the LaTeX layout ([`PreparedEquation`]: the left side
+/// by [`lhs_side`], printed and measured), on several threads as [`lhs_strings`].
+pub fn prepared_equations(taus: &[Poly], rhs: &[String]) -> Vec<PreparedEquation> {
+    let items: Vec<(&Poly, &String)> = taus.iter().zip(rhs).collect();
+    print::parallel::map(
+        &items,
+        |(t, _)| side_work(t),
+        2 * DISPLAY_BUDGET,
+        |(t, r)| PreparedEquation::new(lhs_side(t), r.to_string()),
+    )
 }
 
 /// The number of terms beyond which a quantity of a JSON document (`D`, `C`, `c_ijk`, `g`, `P`) is
@@ -115,18 +123,18 @@ pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
 /// `align*` environment whose lines stay within [`LINE_WIDTH`](crate::print::layout::LINE_WIDTH),
 /// long equations broken across rows ([`Layout::equations`]).
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
+    let rhs: Vec<String> = der
+        .robot()
+        .inputs
+        .iter()
+        .map(|u| print::to_string(&Expr::sym(Symbol::new(u)), style))
+        .collect();
     if style == Style::Latex {
-        let equations: Vec<(Side, String)> = lhs_sides(tau(der, method))
-            .into_iter()
-            .zip(&der.robot().inputs)
-            .map(|(side, u)| (side, print::to_string(&Expr::sym(Symbol::new(u)), style)))
-            .collect();
-        return Layout::new().equations(equations);
+        return Layout::new().equations_prepared(prepared_equations(tau(der, method), &rhs));
     }
     let lines: Vec<(String, String)> = lhs_strings(tau(der, method), style)
         .into_iter()
-        .zip(&der.robot().inputs)
-        .map(|(lhs, u)| (lhs, print::to_string(&Expr::sym(Symbol::new(u)), style)))
+        .zip(rhs)
         .collect();
     equalities(&lines, style)
 }

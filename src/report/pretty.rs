@@ -3,35 +3,155 @@
 //! documents of large robots are megabytes of expressions that need no escaping; they are copied
 //! whole, where the general serializer reads them byte by byte into a string that grows.
 
-use serde_json::Value;
+use serde_json::{Map, Value};
+
+/// A JSON document whose strings are borrowed, so a document of megabytes of expressions is written
+/// without copying them into a [`Value`] first, and a string given twice (`d_jk = d_kj`) is held
+/// once.
+#[derive(Clone, Debug)]
+pub enum Doc<'a> {
+    /// A string.
+    Str(&'a str),
+    /// `null`, a boolean or a number.
+    Scalar(&'a Value),
+    /// An array.
+    Arr(Vec<Doc<'a>>),
+    /// An object; written in the order of its keys, as serde_json's map keeps them.
+    Obj(Vec<(&'a str, Doc<'a>)>),
+}
+
+impl<'a> From<&'a Value> for Doc<'a> {
+    fn from(value: &'a Value) -> Doc<'a> {
+        match value {
+            Value::String(s) => Doc::Str(s),
+            Value::Array(items) => Doc::Arr(items.iter().map(Doc::from).collect()),
+            Value::Object(map) => {
+                Doc::Obj(map.iter().map(|(k, v)| (k.as_str(), v.into())).collect())
+            }
+            other => Doc::Scalar(other),
+        }
+    }
+}
+
+impl From<&Doc<'_>> for Value {
+    fn from(doc: &Doc<'_>) -> Value {
+        match doc {
+            Doc::Str(s) => Value::String(s.to_string()),
+            Doc::Scalar(v) => (*v).clone(),
+            Doc::Arr(items) => Value::Array(items.iter().map(Value::from).collect()),
+            Doc::Obj(members) => {
+                let mut map = Map::new();
+                for (k, v) in members {
+                    map.insert(k.to_string(), v.into());
+                }
+                Value::Object(map)
+            }
+        }
+    }
+}
 
 /// `value` as serde_json's pretty text.
 pub fn to_pretty(value: &Value) -> String {
-    let mut out = String::with_capacity(size(value, 0));
-    write(&mut out, value, 0);
-    out
+    doc_to_pretty(&Doc::from(value))
+}
+
+/// A document as serde_json's pretty text of the same [`Value`].
+pub fn doc_to_pretty(doc: &Doc) -> String {
+    let mut out = Out {
+        buf: String::with_capacity(size(doc, 0)),
+        sink: None,
+    };
+    write(&mut out, doc, 0);
+    out.buf
+}
+
+/// [`doc_to_pretty`] and a line end, written to `sink` a piece at a time through one small buffer
+/// (long strings straight from the document), so a document of megabytes is never copied whole.
+pub fn write_pretty(doc: &Doc, sink: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let mut out = Out {
+        buf: String::with_capacity(2 * CHUNK),
+        sink: Some((sink, None)),
+    };
+    write(&mut out, doc, 0);
+    out.buf.push('\n');
+    out.flush();
+    match out.sink {
+        Some((_, Some(e))) => Err(e),
+        _ => Ok(()),
+    }
+}
+
+/// The size of the pieces [`write_pretty`] writes.
+const CHUNK: usize = 1 << 16;
+
+/// Where the text goes: a string, or a sink fed from a buffer (with the first error it gave, after
+/// which nothing more is written).
+struct Out<'w> {
+    buf: String,
+    sink: Option<(&'w mut dyn std::io::Write, Option<std::io::Error>)>,
+}
+
+impl Out<'_> {
+    fn push(&mut self, c: char) {
+        self.buf.push(c);
+    }
+
+    fn push_str(&mut self, s: &str) {
+        match &mut self.sink {
+            Some(_) if s.len() >= CHUNK => {
+                self.flush();
+                self.emit(s);
+            }
+            Some(_) => {
+                self.buf.push_str(s);
+                if self.buf.len() >= CHUNK {
+                    self.flush();
+                }
+            }
+            None => self.buf.push_str(s),
+        }
+    }
+
+    /// Writes the buffer to the sink (if there is one) and empties it.
+    fn flush(&mut self) {
+        if self.sink.is_some() {
+            let buf = std::mem::take(&mut self.buf);
+            self.emit(&buf);
+            self.buf = buf;
+            self.buf.clear();
+        }
+    }
+
+    fn emit(&mut self, s: &str) {
+        if let Some((sink, err @ None)) = &mut self.sink {
+            if let Err(e) = sink.write_all(s.as_bytes()) {
+                *err = Some(e);
+            }
+        }
+    }
 }
 
 /// An upper estimate of the text's length at `depth` (strings, their quotes and separators, and
 /// each line's indentation), so the output is allocated once.
-fn size(value: &Value, depth: usize) -> usize {
+fn size(doc: &Doc, depth: usize) -> usize {
     let line = 2 * (depth + 1) + 4;
-    match value {
-        Value::String(s) => s.len() + 2,
-        Value::Array(items) => {
+    match doc {
+        Doc::Str(s) => s.len() + 2,
+        Doc::Arr(items) => {
             items
                 .iter()
                 .map(|v| line + size(v, depth + 1))
                 .sum::<usize>()
                 + line
         }
-        Value::Object(map) => {
-            map.iter()
+        Doc::Obj(members) => {
+            members
+                .iter()
                 .map(|(k, v)| line + k.len() + 4 + size(v, depth + 1))
                 .sum::<usize>()
                 + line
         }
-        _ => 24,
+        Doc::Scalar(_) => 24,
     }
 }
 
@@ -45,7 +165,7 @@ fn plain(s: &str) -> bool {
 }
 
 /// A string as a JSON string literal.
-fn write_str(out: &mut String, s: &str) {
+fn write_str(out: &mut Out, s: &str) {
     if plain(s) {
         out.push('"');
         out.push_str(s);
@@ -56,18 +176,18 @@ fn write_str(out: &mut String, s: &str) {
 }
 
 /// A new line indented to `depth`.
-fn newline(out: &mut String, depth: usize) {
+fn newline(out: &mut Out, depth: usize) {
     out.push('\n');
     for _ in 0..depth {
         out.push_str("  ");
     }
 }
 
-fn write(out: &mut String, value: &Value, depth: usize) {
-    match value {
-        Value::String(s) => write_str(out, s),
-        Value::Array(items) if items.is_empty() => out.push_str("[]"),
-        Value::Array(items) => {
+fn write(out: &mut Out, doc: &Doc, depth: usize) {
+    match doc {
+        Doc::Str(s) => write_str(out, s),
+        Doc::Arr(items) if items.is_empty() => out.push_str("[]"),
+        Doc::Arr(items) => {
             out.push('[');
             for (i, v) in items.iter().enumerate() {
                 if i > 0 {
@@ -79,10 +199,15 @@ fn write(out: &mut String, value: &Value, depth: usize) {
             newline(out, depth);
             out.push(']');
         }
-        Value::Object(map) if map.is_empty() => out.push_str("{}"),
-        Value::Object(map) => {
+        Doc::Obj(members) if members.is_empty() => out.push_str("{}"),
+        Doc::Obj(members) => {
+            // serde_json's map keeps its keys sorted (a later duplicate replaces the earlier).
+            let mut order: Vec<usize> = (0..members.len()).collect();
+            order.sort_by(|&a, &b| members[a].0.cmp(members[b].0).then(b.cmp(&a)));
+            order.dedup_by(|later, kept| members[*later].0 == members[*kept].0);
             out.push('{');
-            for (i, (k, v)) in map.iter().enumerate() {
+            for (i, &m) in order.iter().enumerate() {
+                let (k, v) = &members[m];
                 if i > 0 {
                     out.push(',');
                 }
@@ -95,7 +220,7 @@ fn write(out: &mut String, value: &Value, depth: usize) {
             out.push('}');
         }
         // null, booleans and numbers as serde_json writes them.
-        other => out.push_str(&serde_json::to_string(other).expect("a scalar serialises")),
+        Doc::Scalar(v) => out.push_str(&serde_json::to_string(v).expect("a scalar serialises")),
     }
 }
 
@@ -123,5 +248,61 @@ mod tests {
                 serde_json::to_string_pretty(&d).expect("JSON")
             );
         }
+    }
+
+    #[test]
+    fn a_borrowed_document_is_written_as_its_value() {
+        let scalar = json!(3);
+        let doc = Doc::Obj(vec![
+            ("tau", Doc::Arr(vec![Doc::Str("m1*g"), Doc::Str("0")])),
+            ("frame", Doc::Scalar(&Value::Null)),
+            ("coordinates", Doc::Arr(vec![])),
+            ("n", Doc::Scalar(&scalar)),
+            // A key given twice keeps its later value, as a map insert does.
+            ("n", Doc::Str("later")),
+            ("a \"key\"", Doc::Obj(vec![])),
+        ]);
+        let value = Value::from(&doc);
+        assert_eq!(value["n"], json!("later"));
+        let want = serde_json::to_string_pretty(&value).expect("JSON");
+        assert_eq!(doc_to_pretty(&doc), want);
+    }
+
+    #[test]
+    fn a_document_written_in_pieces_is_its_text_and_a_line_end() {
+        // Strings longer than a piece go straight to the sink, shorter ones through the buffer.
+        let long = "m1*g + ".repeat(CHUNK / 4);
+        let many: Vec<String> = (0..3 * CHUNK / 16).map(|i| format!("q{i}")).collect();
+        let doc = Doc::Obj(vec![
+            (
+                "long",
+                Doc::Arr(vec![Doc::Str(&long), Doc::Str(&long[..10])]),
+            ),
+            ("many", Doc::Arr(many.iter().map(|s| Doc::Str(s)).collect())),
+            ("quoted", Doc::Str("a \"b\"")),
+        ]);
+        let mut written: Vec<u8> = Vec::new();
+        write_pretty(&doc, &mut written).expect("a vector takes everything");
+        let text = String::from_utf8(written).expect("UTF-8");
+        assert_eq!(text, format!("{}\n", doc_to_pretty(&doc)));
+        assert_eq!(
+            text.trim_end(),
+            serde_json::to_string_pretty(&Value::from(&doc)).expect("JSON")
+        );
+    }
+
+    #[test]
+    fn a_sink_that_fails_reports_its_error() {
+        struct Closed;
+        impl std::io::Write for Closed {
+            fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+                Err(std::io::ErrorKind::BrokenPipe.into())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        let err = write_pretty(&Doc::Str("x"), &mut Closed).expect_err("the sink is closed");
+        assert_eq!(err.kind(), std::io::ErrorKind::BrokenPipe);
     }
 }
