@@ -239,8 +239,8 @@ pub struct PreparedEquation {
 /// A left side (or an abbreviated sum) as the rows are filled from it.
 #[derive(Clone, Debug)]
 enum Left {
-    /// Terms in the house style, printed while the rows are filled ([`Layout::lines`]).
-    Terms(Vec<Expr>),
+    /// Terms in the house style, each with its LaTeX ([`printed`]), laid out by [`Layout::lines`].
+    Terms(Vec<(Expr, String)>),
     /// Display terms of a large side, printed and measured.
     Measured(MeasuredSum),
 }
@@ -350,12 +350,12 @@ impl PreparedEquation {
         let fits = side.width_at_most(BUDGET) + 2 + width(&rhs) <= BUDGET;
         let line = fits.then(|| side.latex());
         let left = match side {
-            Side::Terms(terms) => Left::Terms(terms),
+            Side::Terms(terms) => Left::Terms(printed(flat_terms(&terms))),
             Side::Shown(shown) => Left::Measured(measure(shown, room_before(&format!(" = {rhs}")))),
         };
         let bytes = rhs.len()
             + match &left {
-                Left::Terms(terms) => 32 * terms.len(),
+                Left::Terms(terms) => terms.iter().map(|(_, s)| s.len() + 3).sum(),
                 Left::Measured(terms) => measured_bytes(terms),
             };
         PreparedEquation {
@@ -561,8 +561,12 @@ impl Layout {
         match left {
             Left::Terms(terms) => {
                 let mut exprs = Vec::new();
-                let lines = self.lines(printed(flat_terms(&terms)), room, &mut exprs);
-                later.extend(exprs.into_iter().map(|(n, e)| (n, Left::Terms(vec![e]))));
+                let lines = self.lines(terms, room, &mut exprs);
+                later.extend(
+                    exprs
+                        .into_iter()
+                        .map(|(n, e)| (n, Left::Terms(printed(flat_terms(&[e]))))),
+                );
                 for (i, line) in lines.iter().enumerate() {
                     if i == 0 {
                         rows.start(lead);

@@ -134,7 +134,18 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         der.coriolis();
         tau(der, method);
     };
-    let mut printed = parallel::pipeline(work, &stages, weight, print).into_iter();
+    // Printing beside the derivation pays off once D has a thousand terms or so (the all-symbolic
+    // PUMA 560's, the Stanford arm's, the UR5's); the numeric PUMA 560 derives in less time than
+    // it takes to print D, and small robots print faster than a thread starts.
+    let worth = |d: &[Job]| {
+        d.iter()
+            .map(|j| match j {
+                Job::Lhs(p) | Job::Large(p) | Job::Small(p) => p.len(),
+            })
+            .sum::<usize>()
+            >= PIPELINE_TERMS
+    };
+    let mut printed = parallel::pipeline(work, &stages, worth, weight, print).into_iter();
     let mut next = || printed.next().expect("one list per stage");
     let (d_upper, symbols, potential) = (next(), next(), next());
     let (lhs, coriolis) = if lagrange {
@@ -152,6 +163,9 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         coriolis,
     }
 }
+
+/// The terms of `D` (upper triangle) from which a document is printed beside its derivation.
+const PIPELINE_TERMS: usize = 1000;
 
 /// What a document says besides its expressions, owned here for [`document`] to borrow.
 struct Meta {
