@@ -274,7 +274,9 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             "print; output discarded), so that printing can never hide behind a fast derivation. ",
         );
         s.push_str("`derive ÷ EL` is the whole `derive` process (Euler–Lagrange, printed in full) in text, LaTeX and JSON ");
-        s.push_str("over the expanded Euler–Lagrange derivation alone, in process (table above): the cost of starting, ");
+        s.push_str("over the expanded Euler–Lagrange derivation alone (D, c_ijk, C, g, τ and K), in process (table above; ");
+        s.push_str("`derive` derives what it prints: the equations need D, c_ijk, g and τ, the JSON document C too, ");
+        s.push_str("and a large robot's document is printed stage by stage on a second thread while the next is derived): the cost of starting, ");
         s.push_str("reading the scene and printing, as a multiple of deriving (a process that does nothing, `symdyn ");
         s.push_str("--version`, takes the time in the PPP table below, which is most of a small robot's `derive`); ");
         s.push_str("`sheet ÷ check` the sheet over `symdyn check`. Pages: of the sheet ");
