@@ -154,3 +154,42 @@ proptest! {
         }
     }
 }
+
+/// A `Derivation` keeps Euler–Lagrange in stages, each in its own cell, and `derive` asks for them
+/// in another order than `Lagrange::derive` computes them (τ first, C only for JSON, K never): every
+/// quantity must be the one the one-shot derivation gives.
+#[test]
+fn staged_euler_lagrange_is_the_one_shot_derivation() {
+    use symdyn::dynamics::kinematics::Kinematics;
+    use symdyn::dynamics::lagrange::Lagrange;
+    use symdyn::parse::{parse_robot, urdf::UrdfOptions};
+    for example in [
+        "ppp.scene",
+        "elbow_payload.scene",
+        "elbow_geared.scene",
+        "scara.scene",
+        "stanford.scene",
+    ] {
+        let path = format!("{}/examples/{example}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).expect("example readable");
+        let robot = parse_robot(&text, &UrdfOptions::default())
+            .expect("example parses")
+            .robot;
+        let once = Lagrange::derive(&robot, &Kinematics::new(&robot));
+        let der = Derivation::new(robot).expect("valid");
+        assert_eq!(*der.motion().tau, *once.tau, "{example}: τ asked for first");
+        assert_eq!(der.coriolis(), &once.c[..], "{example}: C");
+        let el = der.lagrange();
+        assert_eq!(*el.d, *once.d, "{example}: D");
+        assert_eq!(el.d_constant, once.d_constant, "{example}");
+        assert_eq!(*el.christoffel, *once.christoffel, "{example}: c_ijk");
+        assert_eq!(
+            (&el.p, &el.g, &el.k),
+            (&once.p, &once.g, &once.k),
+            "{example}"
+        );
+        assert_eq!(el.facts, once.facts, "{example}");
+        // The stages are shared with the assembled quantities, not copied.
+        assert!(std::ptr::eq(&*el.tau, &*der.motion().tau), "{example}");
+    }
+}
