@@ -896,6 +896,105 @@ mod tests {
         assert!(out.contains("&\\quad + "), "{out}");
     }
 
+    /// Display terms of a large side, as `print::equation` hands them to the layout.
+    fn product(negative: bool, text: &str) -> Shown {
+        Shown {
+            negative,
+            body: Body::Product(text.to_string()),
+        }
+    }
+
+    #[test]
+    fn large_sides_run_on_rows_and_wide_groups_are_given_after_where() {
+        // m_{k} \ddot{q}_{1} terms, then a group of 40 terms (too wide for a row, so abbreviated),
+        // then more terms; a second equation with a narrow group kept in place.
+        let mut first: Vec<Shown> = (1..=30)
+            .map(|k| product(k % 3 == 0, &format!("m_{{{k}}} \\ddot{{q}}_{{1}}")))
+            .collect();
+        first.push(Shown {
+            negative: true,
+            body: Body::Group {
+                before: "g".to_string(),
+                inner: (1..=40)
+                    .map(|k| product(k % 2 == 0, &format!("a_{{{k}}} c_{{1}}")))
+                    .collect(),
+                after: "\\dot{q}_{2}".to_string(),
+                style: Style::Latex,
+            },
+        });
+        first.extend((31..=40).map(|k| product(false, &format!("I_{{{k}}}"))));
+        let second = vec![
+            product(false, "d_{2}"),
+            Shown {
+                negative: false,
+                body: Body::Group {
+                    before: String::new(),
+                    inner: vec![product(false, "b_{1}"), product(true, "b_{2}")],
+                    after: "\\ddot{q}_{2}".to_string(),
+                    style: Style::Latex,
+                },
+            },
+        ];
+        let equations = vec![
+            (Side::Shown(first.clone()), "u_{1}".to_string()),
+            (Side::Shown(second.clone()), "u_{2}".to_string()),
+        ];
+        let out = Layout::new().equations(equations);
+        let body = out
+            .strip_prefix("\\begin{align*}\n")
+            .and_then(|b| b.strip_suffix("\n\\end{align*}\n"))
+            .expect("one align* environment");
+        let rows: Vec<&str> = body.split(" \\\\\n").collect();
+        for row in &rows {
+            let line = row
+                .rsplit('\n')
+                .next()
+                .and_then(|r| r.strip_prefix("  &"))
+                .expect("a left-aligned row");
+            assert!(width(line) <= LINE_WIDTH, "too wide: {row}");
+        }
+        assert!(
+            rows[0].starts_with("  & m_{1} \\ddot{q}_{1} + m_{2}"),
+            "{out}"
+        );
+        assert!(
+            rows.iter().any(|r| r.contains("- g \\Xi_{1} \\dot{q}_{2}")),
+            "{out}"
+        );
+        assert!(
+            rows.iter().any(|r| r.ends_with("= u_{1}"))
+                && rows.iter().any(|r| r.ends_with("= u_{2}")),
+            "{out}"
+        );
+        assert!(
+            out.contains("  & d_{2} + \\left(b_{1}-b_{2}\\right) \\ddot{q}_{2} = u_{2} \\\\\n"),
+            "{out}"
+        );
+        let given = rows
+            .iter()
+            .position(|r| {
+                r.starts_with("  \\intertext{where}\n  & \\Xi_{1} = a_{1} c_{1} - a_{2} c_{1}")
+            })
+            .expect("the abbreviation given after the equations");
+        assert!(
+            rows[given..]
+                .iter()
+                .skip(1)
+                .all(|r| r.starts_with("  &\\quad ")),
+            "{out}"
+        );
+        // Every term is printed once: 40 in the first equation's own rows, 40 in the abbreviation.
+        assert_eq!(out.matches(" c_{1}").count(), 40, "{out}");
+        assert_eq!(out.matches("\\ddot{q}_{1}").count(), 30, "{out}");
+        // Prepared on any thread, laid out in order: the same text.
+        let prepared: Vec<PreparedEquation> = std::thread::scope(|scope| {
+            let second = scope.spawn(|| PreparedEquation::new(Side::Shown(second), "u_{2}".into()));
+            let first = PreparedEquation::new(Side::Shown(first), "u_{1}".into());
+            vec![first, second.join().expect("no panic")]
+        });
+        assert_eq!(Layout::new().equations_prepared(prepared), out);
+    }
+
     #[test]
     fn a_wide_factor_becomes_an_abbreviation() {
         let long: Vec<String> = (1..=30).map(|i| format!("m{i}")).collect();
