@@ -195,9 +195,8 @@ impl MassMatrix {
 pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
     let d = &mass.d;
     let n = d.len();
-    let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
     if mass.constant {
-        return christoffel;
+        return vec![vec![vec![Poly::zero(); n]; n]; n];
     }
     let qs: Vec<Symbol> = (1..=n as u32).map(Symbol::q).collect();
     // ∂D/∂q_i, for the upper triangle only (D is symmetric, so is each ∂D/∂q_i):
@@ -211,18 +210,29 @@ pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
                 .collect()
         })
         .collect();
-    let dd_at = |i: usize, a: usize, b: usize| -> &Poly {
+    christoffel_from(&dd, |_, _, _, c| c)
+}
+
+/// `c_ijk = ½ (∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)` from `dd[i][a][b − a] = ∂d_ab/∂q_i` (`a ≤ b`,
+/// the upper triangle: each `∂D/∂q_i` is symmetric), however the derivatives were taken (expanded
+/// here, through names in [`super::compact`]). Each symbol with `i ≤ j` (0-based) goes through
+/// `keep` (which may name it) and is given to both `c_ijk` and `c_jik`.
+pub fn christoffel_from(
+    dd: &[Vec<Vec<Poly>>],
+    mut keep: impl FnMut(usize, usize, usize, Poly) -> Poly,
+) -> Christoffel {
+    let n = dd.len();
+    let at = |i: usize, a: usize, b: usize| -> &Poly {
         let (a, b) = if a <= b { (a, b) } else { (b, a) };
         &dd[i][a][b - a]
     };
     let half = Rational::new(1, 2).expect("non-zero");
+    let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
     for i in 0..n {
         for j in i..n {
             for k in 0..n {
-                let c = dd_at(i, k, j)
-                    .add(dd_at(j, k, i))
-                    .sub(dd_at(k, i, j))
-                    .scale(&half);
+                let c = at(i, k, j).add(at(j, k, i)).sub(at(k, i, j)).scale(&half);
+                let c = keep(i, j, k, c);
                 christoffel[j][i][k] = c.clone();
                 christoffel[i][j][k] = c;
             }
@@ -231,8 +241,8 @@ pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
     christoffel
 }
 
-/// `C(q, q̇)`: `c_kj = Σ_i c_ijk q̇_i`.
-pub fn coriolis_matrix(christoffel: &Christoffel) -> Vec<Vec<Poly>> {
+/// `C(q, q̇)`: `c_kj = Σ_i c_ijk q̇_i` (expanded, or over the names of a compact arena).
+pub fn coriolis_matrix(christoffel: &[Vec<Vec<Poly>>]) -> Vec<Vec<Poly>> {
     let n = christoffel.len();
     let qds: Vec<Poly> = (1..=n as u32)
         .map(|i| Poly::symbol(&Symbol::qd(i)))

@@ -7,6 +7,8 @@
 
 use crate::algebra::compact::Compact;
 use crate::algebra::{Poly, Rational, Symbol};
+use crate::dynamics::lagrange::christoffel_from;
+pub use crate::dynamics::lagrange::coriolis_matrix as coriolis;
 
 /// Whether no entry of `D` depends on a position `q_i` (then every Christoffel symbol vanishes).
 pub fn is_constant(d: &[Vec<Poly>], arena: &Compact) -> bool {
@@ -25,41 +27,9 @@ pub fn christoffel(d: &[Vec<Poly>], arena: &mut Compact) -> Vec<Vec<Vec<Poly>>> 
                 .collect()
         })
         .collect();
-    let at = |i: usize, a: usize, b: usize| -> &Poly {
-        let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        &dd[i][a][b - a]
-    };
-    let half = Rational::new(1, 2).expect("non-zero");
-    let mut c = vec![vec![vec![Poly::zero(); n]; n]; n];
-    for i in 0..n {
-        for j in i..n {
-            for k in 0..n {
-                let v = at(i, k, j).add(at(j, k, i)).sub(at(k, i, j)).scale(&half);
-                let v = arena.name(v, &format!("c{}_{}_{}", i + 1, j + 1, k + 1));
-                c[j][i][k] = v.clone();
-                c[i][j][k] = v;
-            }
-        }
-    }
-    c
-}
-
-/// `C(q, q̇)`: `c_kj = Σ_i c_ijk q̇_i`.
-pub fn coriolis(c: &[Vec<Vec<Poly>>]) -> Vec<Vec<Poly>> {
-    let n = c.len();
-    let qd: Vec<Poly> = (1..=n as u32)
-        .map(|i| Poly::symbol(&Symbol::qd(i)))
-        .collect();
-    (0..n)
-        .map(|k| {
-            (0..n)
-                .map(|j| {
-                    let parts: Vec<Poly> = (0..n).map(|i| c[i][j][k].mul(&qd[i])).collect();
-                    Poly::sum(parts.iter())
-                })
-                .collect()
-        })
-        .collect()
+    christoffel_from(&dd, |i, j, k, v| {
+        arena.name(v, &format!("c{}_{}_{}", i + 1, j + 1, k + 1))
+    })
 }
 
 /// `τ_k = Σ_j d_kj q̈_j + Σ_{i ≤ j} (2 − δ_ij) c_ijk q̇_i q̇_j + g_k + f_k`, with `f_k` the joint's
