@@ -88,7 +88,7 @@ pub const SHARED_WORK: usize = 4000;
 /// inputs exist (it may wait for another thread to derive them).
 pub type Stage<'a, C, T> = Box<dyn Fn() -> (C, Vec<T>) + Sync + 'a>;
 
-/// A stage's items once it has returned them, and the next of them to take.
+/// A stage's items once it has returned them, with their weights and which have been taken.
 struct Ready<C, T> {
     ctx: C,
     items: Vec<T>,
