@@ -66,10 +66,11 @@ fn print(ranks: &Option<Ranks>, job: &Job) -> String {
     }
 }
 
-/// The cost of printing a job, for the order in which threads take them.
+/// The cost of printing a job, in [`super::side_work`]'s units.
 fn weight(job: &Job) -> usize {
     match job {
-        Job::Lhs(p) | Job::Large(p) => p.len(),
+        Job::Lhs(p) => super::side_work(p),
+        Job::Large(p) => 64 * p.len(),
         // Tidying costs far more per term than printing.
         Job::Small(p) => 20 * p.len() * p.len(),
     }

@@ -64,20 +64,23 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
 /// on canonical expressions in their structural order, so the text is the same on any number of
 /// threads.
 pub fn lhs_strings(taus: &[Poly], style: Style) -> Vec<String> {
-    print::parallel::map(taus, side_work, 2 * DISPLAY_BUDGET, |t| {
-        lhs_string(t, style)
-    })
+    print::parallel::map(taus, side_work, PARALLEL_WORK, |t| lhs_string(t, style))
 }
 
-/// The work of printing an equation side, for [`print::parallel::map`]: its terms when printed from
-/// the normal form, far more when tidied (about the square of its terms).
-fn side_work(t: &Poly) -> usize {
+/// The work of printing an equation side, for [`print::parallel::map`], in units of about 3 ns:
+/// tidying costs about the square of its terms (the numeric PUMA 560's 185-term τ₂, 2.3 ms), printing
+/// from the normal form about a quarter of a microsecond a term.
+pub(crate) fn side_work(t: &Poly) -> usize {
     if t.len() > DISPLAY_BUDGET {
-        t.len()
+        64 * t.len()
     } else {
         20 * t.len() * t.len()
     }
 }
+
+/// The work ([`side_work`]) below which the equations are printed on the calling thread: about a
+/// third of a millisecond, the cost of starting a thread (the PPP, elbow and SCARA arms stay on one).
+const PARALLEL_WORK: usize = 100_000;
 
 /// Every equation `τ_k = rhs_k` prepared for the LaTeX layout ([`PreparedEquation`]: the left side
 /// by [`lhs_side`], printed and measured), on several threads as [`lhs_strings`].
@@ -86,7 +89,7 @@ pub fn prepared_equations(taus: &[Poly], rhs: &[String]) -> Vec<PreparedEquation
     print::parallel::map(
         &items,
         |(t, _)| side_work(t),
-        2 * DISPLAY_BUDGET,
+        PARALLEL_WORK,
         |(t, r)| PreparedEquation::new(lhs_side(t), r.to_string()),
     )
 }
