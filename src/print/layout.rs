@@ -159,6 +159,15 @@ impl Side {
             Side::Shown(s) => print::equation::join(s),
         }
     }
+
+    /// [`Side::latex`] when its [`width`] is at most `room`: a side of terms printed once and
+    /// measured, a large side measured first (up to `room`) and printed only if it fits.
+    fn within(&self, room: usize) -> Option<String> {
+        match self {
+            Side::Terms(_) => Some(self.latex()).filter(|l| width(l) <= room),
+            Side::Shown(_) => (self.width_at_most(room) <= room).then(|| self.latex()),
+        }
+    }
 }
 
 /// The LaTeX of one signed term, `-m_{1} g` or `m_{1} g`.
@@ -347,8 +356,9 @@ fn measured_bytes(sum: &MeasuredSum) -> usize {
 impl PreparedEquation {
     /// `side = rhs` (`rhs` in LaTeX) printed and measured for [`Layout::equations_prepared`].
     pub fn new(side: Side, rhs: String) -> PreparedEquation {
-        let fits = side.width_at_most(BUDGET) + 2 + width(&rhs) <= BUDGET;
-        let line = fits.then(|| side.latex());
+        let line = BUDGET
+            .checked_sub(2 + width(&rhs))
+            .and_then(|room| side.within(room));
         let left = match side {
             Side::Terms(terms) => Left::Terms(printed(flat_terms(&terms))),
             Side::Shown(shown) => Left::Measured(measure(shown, room_before(&format!(" = {rhs}")))),
