@@ -690,6 +690,48 @@ fn cli_regressor_and_identify() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Robots placed joint by joint (`origin ... axis`, as URDF states them) get base parameters too. Their
+/// special values are entries of a joint's origin: freeing the first joint's roll tilts its axis away
+/// from gravity, which must give the count of gravity as an input (every direction of gravity acts),
+/// computed here by the same command, not written down.
+#[test]
+fn placed_robots_get_base_parameters_and_their_special_values() {
+    for (file, count, of) in [
+        ("examples/ur5.urdf", 36, 60),
+        ("examples/ur5_placed.scene", 36, 60),
+        ("examples/panda.urdf", 43, 70),
+    ] {
+        let (code, out, err) = symdyn(&["regressor", file, "--base"]);
+        assert_eq!(code, 0, "{file}: {err}");
+        assert!(
+            out.contains(&format!("base parameters: {count} of {of}")),
+            "{file}: {out}"
+        );
+        assert!(
+            out.contains("proved [exact]: Y_beta beta = Y pi"),
+            "{file}: {out}"
+        );
+        let (code, input, err) = symdyn(&["regressor", file, "--base", "--gravity-input"]);
+        assert_eq!(code, 0, "{file}: {err}");
+        let free = input
+            .lines()
+            .find_map(|l| l.strip_prefix("base parameters: "))
+            .and_then(|l| l.split(' ').next())
+            .expect("a count");
+        assert_ne!(
+            free,
+            count.to_string(),
+            "{file}: gravity as an input adds parameters"
+        );
+        assert!(
+            out.contains(&format!(
+                "roll1 = 0 (joint 1): with it free the count would be {free}"
+            )),
+            "{file}: {out}"
+        );
+    }
+}
+
 #[test]
 fn repl_regressor_and_base() {
     let mut s = symdyn::repl::Session::new();

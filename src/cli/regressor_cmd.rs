@@ -89,7 +89,7 @@ pub fn regressor(args: RegressorArgs<'_>) -> Result<String, CliError> {
             if base.is_some() {
                 if special.is_empty() {
                     t.push_str(
-                        "special values: none of the scene's numeric DH constants decides the count \
+                        "special values: none of the scene's numeric geometry constants (DH entries or placement origins) decides the count \
                          (all of them freed at once give the same count)\n",
                     );
                 } else {

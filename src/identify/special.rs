@@ -1,5 +1,6 @@
-//! Which special values of the scene's geometry decide the count of base parameters: a DH constant
-//! that is a number (a zero length, a right-angle twist) is freed, one at a time, into a fresh
+//! Which special values of the scene's geometry decide the count of base parameters: a constant of
+//! the geometry that is a number (a zero length, a right-angle twist; for a joint placed by
+//! `origin ... axis`, an entry of its origin's `xyz` or `rpy`) is freed, one at a time, into a fresh
 //! symbol, and the count compared. Only when freeing all of them at once changes the count is each
 //! tried, so a scene whose numbers are generic costs one extra elimination.
 
@@ -7,14 +8,15 @@ use super::base::rank;
 use super::error::IdentifyError;
 use super::regressor::{Regressor, RegressorOptions};
 use crate::algebra::Expr;
-use crate::dynamics::{JointKind, Robot};
+use crate::dynamics::{Joint, JointKind, Robot};
 
 /// One numeric DH constant that matters: `(joint, field, value, count with it free)`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Special {
     /// The joint, 1-based.
     pub joint: usize,
-    /// `a`, `alpha`, `d` or `theta`.
+    /// `a`, `alpha`, `d` or `theta` of a DH row; `x`, `y`, `z`, `roll`, `pitch` or `yaw` of a placed
+    /// joint's origin.
     pub field: &'static str,
     /// The scene's value, as written back.
     pub value: String,
@@ -22,22 +24,46 @@ pub struct Special {
     pub free_count: usize,
 }
 
-/// The numeric constants of the DH table (`(joint, field)`), the joint variable's field excluded.
+/// The names of a placed joint's origin entries, `xyz` then `rpy`.
+const PLACEMENT_FIELDS: [&str; 6] = ["x", "y", "z", "roll", "pitch", "yaw"];
+
+/// The constant `field` of joint `j`: a DH entry, or an entry of its placement's origin.
+fn field_mut<'a>(j: &'a mut Joint, field: &str) -> &'a mut Expr {
+    if let (Some(p), Some(k)) = (
+        j.placement.as_mut(),
+        PLACEMENT_FIELDS.iter().position(|f| *f == field),
+    ) {
+        return if k < 3 {
+            &mut p.xyz[k]
+        } else {
+            &mut p.rpy[k - 3]
+        };
+    }
+    match field {
+        "a" => &mut j.a,
+        "alpha" => &mut j.alpha,
+        "d" => &mut j.d,
+        _ => &mut j.theta,
+    }
+}
+
+/// The numeric constants of the geometry (`(joint, field)`): of a DH row, the joint variable's field
+/// excluded; of a placed joint, the entries of its origin (its `a` and `alpha` are zero by
+/// definition and its axis a fixed unit vector, so neither is a value to free).
 fn constants(robot: &Robot) -> Vec<(usize, &'static str)> {
     let mut out = Vec::new();
     for (i, j) in robot.joints.iter().enumerate() {
-        let fields: [(&'static str, &Expr); 4] = [
-            ("a", &j.a),
-            ("alpha", &j.alpha),
-            ("d", &j.d),
-            ("theta", &j.theta),
-        ];
-        for (name, e) in fields {
-            let variable = matches!(
-                (j.kind, name),
-                (JointKind::Revolute, "theta") | (JointKind::Prismatic, "d")
-            );
-            if !variable && e.symbols().is_empty() {
+        let mut j = j.clone();
+        let fields: &[&'static str] = if j.placement.is_some() {
+            &PLACEMENT_FIELDS
+        } else {
+            match j.kind {
+                JointKind::Revolute => &["a", "alpha", "d"],
+                JointKind::Prismatic => &["a", "alpha", "theta"],
+            }
+        };
+        for &name in fields {
+            if field_mut(&mut j, name).symbols().is_empty() {
                 out.push((i + 1, name));
             }
         }
@@ -48,14 +74,7 @@ fn constants(robot: &Robot) -> Vec<(usize, &'static str)> {
 fn freed(robot: &Robot, which: &[(usize, &'static str)]) -> Robot {
     let mut r = robot.clone();
     for &(i, field) in which {
-        let sym = Expr::symbol(&format!("{field}{i}_free"));
-        let j = &mut r.joints[i - 1];
-        match field {
-            "a" => j.a = sym,
-            "alpha" => j.alpha = sym,
-            "d" => j.d = sym,
-            _ => j.theta = sym,
-        }
+        *field_mut(&mut r.joints[i - 1], field) = Expr::symbol(&format!("{field}{i}_free"));
     }
     r
 }
@@ -80,17 +99,11 @@ pub fn special_values(
     for &(joint, field) in &all {
         let c = count(&freed(robot, &[(joint, field)]), opts, seed)?;
         if c != scene_count {
-            let j = &robot.joints[joint - 1];
-            let value = match field {
-                "a" => &j.a,
-                "alpha" => &j.alpha,
-                "d" => &j.d,
-                _ => &j.theta,
-            };
+            let mut j = robot.joints[joint - 1].clone();
             out.push(Special {
                 joint,
                 field,
-                value: value.to_string(),
+                value: field_mut(&mut j, field).to_string(),
                 free_count: c,
             });
         }
