@@ -193,3 +193,78 @@ fn staged_euler_lagrange_is_the_one_shot_derivation() {
         assert!(std::ptr::eq(&*el.tau, &*der.motion().tau), "{example}");
     }
 }
+
+/// The inertia matrix is built from each link's Jacobians in the link's own frame
+/// (`Kinematics::local_jacobians`, built by walking back from the link, never from the world-frame
+/// columns): they must be exactly `R_iᵀ J_v,i` and `R_iᵀ J_ω,i` of the world-frame Jacobians, column by
+/// column, for every convention (standard and modified DH, placed joints, URDF), prismatic joints and
+/// joint offsets included.
+#[test]
+fn local_jacobians_are_the_world_jacobians_seen_from_the_link() {
+    use symdyn::algebra::{to_poly, Poly};
+    use symdyn::dynamics::kinematics::Kinematics;
+    use symdyn::dynamics::vec3::Vec3;
+    use symdyn::parse::{parse_robot, parse_scene, urdf::UrdfOptions};
+    let mut robots: Vec<(String, Robot)> = Vec::new();
+    for example in [
+        "ppp.scene",
+        "rpp.scene",
+        "scara.scene",
+        "stanford.scene",
+        "puma560.scene",
+        "panda.scene",
+        "ur5_placed.scene",
+        "ur5.urdf",
+        "panda.urdf",
+    ] {
+        let path = format!("{}/examples/{example}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).expect("example readable");
+        let robot = parse_robot(&text, &UrdfOptions::default())
+            .expect("parses")
+            .robot;
+        robots.push((example.to_string(), robot));
+    }
+    for seed in 0..6 {
+        for convention in [Convention::Standard, Convention::Modified] {
+            robots.push((
+                format!("random {convention:?} {seed}"),
+                symdyn::chains::random_chain(4, convention, seed),
+            ));
+        }
+        let scene = symdyn::chains::random_placement_scene(4, seed);
+        robots.push((
+            format!("random placed {seed}"),
+            parse_scene(&scene).expect("parses").robot,
+        ));
+    }
+    for (name, robot) in &robots {
+        let kin = Kinematics::new(robot);
+        let mut nonzero = 0;
+        for i in 0..robot.dof() {
+            let com = Vec3(std::array::from_fn(|k| to_poly(&robot.links[i].com[k])));
+            let (jv, jw) = kin.local_jacobians(i, &com);
+            let r = &kin.rot0[i + 1];
+            for j in 0..robot.dof() {
+                let (v, w) = (r.tr_mul_vec(&kin.jv[i][j]), r.tr_mul_vec(&kin.jw[i][j]));
+                assert_eq!(
+                    jv[j].0,
+                    v.0,
+                    "{name}: R_{}ᵀ J_v,{} column {}",
+                    i + 1,
+                    i + 1,
+                    j + 1
+                );
+                assert_eq!(
+                    jw[j].0,
+                    w.0,
+                    "{name}: R_{}ᵀ J_ω,{} column {}",
+                    i + 1,
+                    i + 1,
+                    j + 1
+                );
+                nonzero += usize::from(!v.0.iter().all(Poly::is_zero));
+            }
+        }
+        assert!(nonzero > 0, "{name}: some column moves");
+    }
+}

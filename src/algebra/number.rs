@@ -25,15 +25,40 @@ enum Repr {
     Big(Box<BigRational>),
 }
 
-fn gcd_i128(mut a: i128, mut b: i128) -> i128 {
-    a = a.abs();
-    b = b.abs();
-    while b != 0 {
-        let t = a % b;
-        a = b;
-        b = t;
+/// Greatest common divisor of two `u128`s, binary (no 128-bit division, which is a library call);
+/// the `u64` loop once both fit.
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
     }
-    a
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        if let (Ok(x), Ok(y)) = (u64::try_from(a), u64::try_from(b)) {
+            // `a` is odd: the common factors of two are all in `shift`.
+            return (gcd_u64(x, y) as u128) << shift;
+        }
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+/// `x / g` for a divisor `g` of `x`, in 64 bits when both fit (128-bit division is a library call).
+#[inline]
+fn div_exact(x: i128, g: u128) -> i128 {
+    match (i64::try_from(x), i64::try_from(g)) {
+        (Ok(x), Ok(g)) => (x / g) as i128,
+        _ => x / g as i128,
+    }
 }
 
 impl Rational {
@@ -62,17 +87,28 @@ impl Rational {
 
     fn from_i128(num: i128, den: i128) -> Rational {
         debug_assert!(den != 0);
-        let g = gcd_i128(num, den).max(1);
-        let (mut n, mut d) = (num / g, den / g);
+        let g = gcd_u128(num.unsigned_abs(), den.unsigned_abs()).max(1);
+        let (mut n, mut d) = if g == 1 {
+            (num, den)
+        } else {
+            (div_exact(num, g), div_exact(den, g))
+        };
         if d < 0 {
             n = -n;
             d = -d;
         }
-        match (i64::try_from(n), i64::try_from(d)) {
+        Rational::from_reduced_i128(n, d)
+    }
+
+    /// `num/den` already in lowest terms with `den > 0`: the small form when both fit.
+    #[inline]
+    fn from_reduced_i128(num: i128, den: i128) -> Rational {
+        debug_assert!(den > 0);
+        match (i64::try_from(num), i64::try_from(den)) {
             (Ok(n), Ok(d)) => Rational(Repr::Small(n, d)),
-            _ => Rational(Repr::Big(Box::new(BigRational::new(
-                BigInt::from(n),
-                BigInt::from(d),
+            _ => Rational(Repr::Big(Box::new(BigRational::new_raw(
+                BigInt::from(num),
+                BigInt::from(den),
             )))),
         }
     }
@@ -334,6 +370,10 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     if b == 0 {
         return a;
     }
+    if a == 1 || b == 1 {
+        // Integers and unit numerators are most coefficients; the loop would take a step a bit.
+        return 1;
+    }
     let shift = (a | b).trailing_zeros();
     a >>= a.trailing_zeros();
     loop {
@@ -348,39 +388,68 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     }
 }
 
-/// `a/b · c/d` for reduced small fractions without 128-bit division: cross-cancel, then multiply.
-/// `None` on overflow (the caller falls back to the general path).
+/// `a/b · c/d` for reduced small fractions: cross-cancel in 64 bits, then multiply. The cancelled
+/// product is in lowest terms, so a product past 64 bits needs no 128-bit gcd.
 #[inline]
 fn mul_small(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
     if a == 0 || c == 0 {
         return Some(Rational::zero());
     }
     if b == 1 && d == 1 {
-        return Some(Rational(Repr::Small(a.checked_mul(c)?, 1)));
+        if let Some(n) = a.checked_mul(c) {
+            return Some(Rational(Repr::Small(n, 1)));
+        }
+        return Some(Rational::from_reduced_i128(a as i128 * c as i128, 1));
     }
     let g1 = gcd_u64(a.unsigned_abs(), d as u64) as i64;
     let g2 = gcd_u64(c.unsigned_abs(), b as u64) as i64;
-    let n = (a / g1).checked_mul(c / g2)?;
-    let den = (b / g2).checked_mul(d / g1)?;
-    Some(Rational(Repr::Small(n, den)))
+    let (a, c, b, d) = (a / g1, c / g2, b / g2, d / g1);
+    match (a.checked_mul(c), b.checked_mul(d)) {
+        (Some(n), Some(den)) => Some(Rational(Repr::Small(n, den))),
+        _ => Some(Rational::from_reduced_i128(
+            a as i128 * c as i128,
+            b as i128 * d as i128,
+        )),
+    }
 }
 
-/// `a/b + c/d` for reduced small fractions with equal denominators (the common case); `None`
-/// otherwise or on overflow.
+/// `a/b + c/d` for reduced small fractions (Henrici): with `g = gcd(b, d)`, the sum is
+/// `t / (b/g · d)` for `t = a·(d/g) + c·(b/g)`, and only `gcd(t, g)` can cancel. Sums past 64 bits
+/// stay exact in 128.
 #[inline]
 fn add_small(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
-    if b != d {
-        return None;
+    if b == d {
+        let n = a as i128 + c as i128;
+        if n == 0 {
+            return Some(Rational::zero());
+        }
+        if b == 1 {
+            return Some(Rational::from_reduced_i128(n, 1));
+        }
+        let g = gcd_u128(n.unsigned_abs(), b as u128);
+        return Some(Rational::from_reduced_i128(
+            div_exact(n, g),
+            (b as u128 / g) as i128,
+        ));
     }
-    let n = a.checked_add(c)?;
-    if b == 1 {
-        return Some(Rational(Repr::Small(n, 1)));
-    }
-    if n == 0 {
+    let g = gcd_u64(b as u64, d as u64);
+    let (bg, dg) = (b as i128 / g as i128, d as i128 / g as i128);
+    let t = a as i128 * dg + c as i128 * bg;
+    if t == 0 {
         return Some(Rational::zero());
     }
-    let g = gcd_u64(n.unsigned_abs(), b as u64) as i64;
-    Some(Rational(Repr::Small(n / g, b / g)))
+    if g == 1 {
+        return Some(Rational::from_reduced_i128(t, b as i128 * d as i128));
+    }
+    let r = match u64::try_from(t.unsigned_abs()) {
+        Ok(t) => t % g,
+        Err(_) => (t.unsigned_abs() % g as u128) as u64,
+    };
+    let g2 = gcd_u64(r, g);
+    Some(Rational::from_reduced_i128(
+        div_exact(t, g2 as u128),
+        bg * (d as i128 / g2 as i128),
+    ))
 }
 
 macro_rules! binop {
@@ -550,6 +619,54 @@ mod tests {
                 assert_eq!(x + y, Rational::from_big(&xb + &yb), "{x} + {y} canonical");
             }
             assert_eq!((-x).to_big(), -x.to_big());
+        }
+    }
+
+    /// Numerators and denominators that reach every path: small, near 2^63, and products of powers
+    /// of 2, 3 and 10 (decimal parameters share large factors, so their sums cancel).
+    fn part() -> impl proptest::strategy::Strategy<Value = i64> {
+        use proptest::prelude::*;
+        prop_oneof![
+            -50i64..50,
+            any::<i64>(),
+            (0u32..62, 0u32..39, 0u32..18).prop_map(|(a, b, c)| {
+                2i64.checked_pow(a)
+                    .and_then(|x| x.checked_mul(3i64.checked_pow(b)?))
+                    .and_then(|x| x.checked_mul(10i64.checked_pow(c)?))
+                    .unwrap_or(7)
+            }),
+            (i64::MAX - 100..=i64::MAX),
+        ]
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn arithmetic_agrees_with_big_rationals(
+            a in part(), b in part(), c in part(), d in part(), negate in proptest::bool::ANY
+        ) {
+            let positive = |n: i64| n.unsigned_abs().clamp(1, i64::MAX as u64) as i64;
+            let (b, d) = (positive(b), positive(d));
+            let a = if negate { a.saturating_neg() } else { a };
+            let (x, y) = (r(a, b), r(c, d));
+            let (xb, yb) = (x.to_big(), y.to_big());
+            for (got, want, op) in [(&x + &y, &xb + &yb, "+"), (&x - &y, &xb - &yb, "-"), (&x * &y, &xb * &yb, "*")] {
+                proptest::prop_assert_eq!(got.to_big(), want.clone(), "{} {} {}", x, op, y);
+                // Canonical: a value that fits the small form is stored in it.
+                proptest::prop_assert_eq!(got, Rational::from_big(want), "{} {} {} canonical", x, op, y);
+            }
+        }
+
+        #[test]
+        fn binary_gcd_of_128_bits(
+            g in proptest::num::u32::ANY, x in proptest::num::u64::ANY, y in 0u64..1000, k in 0u32..32
+        ) {
+            // A common factor `g` (up to 63 bits with `k` more twos) times cofactors of any size.
+            let g = (g as u128) << k;
+            for (a, b) in [(g * x as u128, g * y as u128), (x as u128, y as u128), (g, 0)] {
+                let want = num_integer::Integer::gcd(&a, &b);
+                proptest::prop_assert_eq!(gcd_u128(a, b), want);
+                proptest::prop_assert_eq!(gcd_u128(b, a), want);
+            }
         }
     }
 

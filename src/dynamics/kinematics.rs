@@ -31,6 +31,9 @@ pub struct JointFrame {
     pub rate: Poly,
 }
 
+/// The columns of a 3×n Jacobian.
+pub type Columns = Vec<Vec3<Poly>>;
+
 /// The kinematics of a robot.
 #[derive(Clone, Debug)]
 pub struct Kinematics {
@@ -195,6 +198,48 @@ impl Kinematics {
             rotates,
             payload,
         }
+    }
+
+    /// Link `i`'s Jacobians seen from its own frame (`i` 0-based): `R_iᵀ J_v,i` and `R_iᵀ J_ω,i`, the
+    /// same polynomials as rotating [`Kinematics::jv`] and [`Kinematics::jw`], built without them.
+    ///
+    /// Column `j ≤ i` is `rate_j · a_j × (c_i − p_j)` for a revolute joint (`rate_j · a_j` for a
+    /// prismatic one; its `J_ω` column is `rate_j · a_j` or zero), where `a_j` is joint `j`'s axis,
+    /// `p_j` a point on it and `c_i` the centre of mass, all in frame `i`. Walking from link `i` back to
+    /// the base with `Q_{m−1} = Q_m (R_{m−1}^m)ᵀ` (frame `m − 1`'s axes seen from frame `i`) and
+    /// `u_{m−1} = u_m − Q_{m−1} o_m` (its origin), column `j` holds only the angles `q_j … q_i`: the
+    /// world-frame columns hold every angle from `q_1` on, and the dot products of the inertia matrix
+    /// cancel them again, which is where an inertia matrix built from them spends its time.
+    pub fn local_jacobians(
+        &self,
+        i: usize,
+        com: &Vec3<Poly>,
+    ) -> (Vec<Vec3<Poly>>, Vec<Vec3<Poly>>) {
+        let n = self.joints.len();
+        // q[m], u[m] for m = 0..=i+1 (frame m of the book; frame i + 1 is link i's own).
+        let last = i + 1;
+        let mut q = vec![Mat3::identity(); last + 1];
+        let mut u = vec![Vec3::zero(); last + 1];
+        for m in (1..=last).rev() {
+            let jf = &self.joints[m - 1];
+            q[m - 1] = q[m].mul(&jf.rot.transpose());
+            u[m - 1] = u[m].sub(&q[m - 1].mul_vec(&jf.origin));
+        }
+        let mut jv = vec![Vec3::zero(); n];
+        let mut jw = vec![Vec3::zero(); n];
+        for j in 1..=last {
+            let jf = &self.joints[j - 1];
+            let axis = q[j].mul_vec(&jf.axis_local).scale(&jf.rate);
+            match jf.kind {
+                JointKind::Prismatic => jv[j - 1] = axis,
+                JointKind::Revolute => {
+                    let point = q[j - 1].mul_vec(&jf.joint_point).add(&u[j - 1]);
+                    jv[j - 1] = axis.cross(&com.sub(&point));
+                    jw[j - 1] = axis;
+                }
+            }
+        }
+        (jv, jw)
     }
 
     /// The homogeneous transform `T_0^i` as a 4×4 matrix of expressions (`i = 0..=n`).

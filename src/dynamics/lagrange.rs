@@ -15,7 +15,7 @@
 //! Indices in the API are 0-based (`d[k][j]` is `d_{k+1, j+1}`); printers add one.
 
 use super::facts::Fact;
-use super::kinematics::Kinematics;
+use super::kinematics::{Columns, Kinematics};
 use super::model::Robot;
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::calculus::poly_diff;
@@ -85,21 +85,6 @@ fn is_constant(p: &Poly) -> bool {
 /// A link's inertia tensor in its own frame and the columns of `R_iᵀ J_ω,i`.
 type LinkInertia = (Mat3<Poly>, Vec<Vec3<Poly>>);
 
-/// The columns of `R_iᵀ J_ω,i` (link `i`, 0-based): the joint axes seen from link `i`.
-fn local_axes(kin: &Kinematics, i: usize) -> Vec<Vec3<Poly>> {
-    let r = &kin.rot0[i + 1];
-    kin.jw[i]
-        .iter()
-        .map(|w| {
-            if w.is_exact_zero() {
-                Vec3::zero()
-            } else {
-                r.tr_mul_vec(w)
-            }
-        })
-        .collect()
-}
-
 fn quad(u: &Vec3<Poly>, m: &Mat3<Poly>, v: &Vec3<Poly>) -> Poly {
     u.dot(&m.mul_vec(v))
 }
@@ -113,42 +98,49 @@ fn tensor_poly(t: &[[crate::algebra::Expr; 3]; 3]) -> Mat3<Poly> {
 
 impl MassMatrix {
     /// `D(q) = Σ_i m_i J_v,iᵀ J_v,i + J_ω,iᵀ R_i I_i R_iᵀ J_ω,i` (+ payload, + reflected rotors).
+    ///
+    /// Both terms are taken in link `i`'s own frame ([`Kinematics::local_jacobians`]):
+    /// `J_v,iᵀ J_v,i = (R_iᵀ J_v,i)ᵀ (R_iᵀ J_v,i)` and `(R_iᵀ J_ω,i)ᵀ I_i (R_iᵀ J_ω,i)`, where the tensor
+    /// is given. Column `j` there holds only `q_j … q_i`, so the products never build, and cancel, the
+    /// base's angles that `D` does not depend on, and the large expanded `R_i I_i R_iᵀ` is never
+    /// formed. The polynomials are the same.
     pub fn derive(robot: &Robot, kin: &Kinematics) -> MassMatrix {
         let n = robot.dof();
-        // The rotational term J_ω,iᵀ (R_i I_i R_iᵀ) J_ω,i, for the links that rotate and have an
-        // inertia, as (R_iᵀ J_ω,i)ᵀ I_i (R_iᵀ J_ω,i): the joint axes seen from link i, where the tensor
-        // is given, so the large expanded R_i I_i R_iᵀ is never formed (same polynomials).
+        let local: Vec<(Columns, Columns)> = (0..n)
+            .map(|i| {
+                let com = Vec3(std::array::from_fn(|k| to_poly(&robot.links[i].com[k])));
+                kin.local_jacobians(i, &com)
+            })
+            .collect();
         let rotational: Vec<Option<LinkInertia>> = (0..n)
             .map(|i| {
                 let tensor = robot.links[i].inertia.as_ref()?;
                 if !kin.rotates[i] {
                     return None;
                 }
-                Some((tensor_poly(tensor), local_axes(kin, i)))
+                Some((tensor_poly(tensor), local[i].1.clone()))
             })
             .collect();
         let masses: Vec<Poly> = robot.links.iter().map(|l| to_poly(&l.mass)).collect();
-        // The payload: its mass, J_v,L and, when link n rotates, its tensor with link n's axes.
-        let payload = robot
-            .payload
-            .as_ref()
-            .zip(kin.payload.as_ref())
-            .map(|(l, (_, jv))| {
-                let rot = l.inertia.as_ref().filter(|_| kin.rotates[n - 1]).map(|t| {
-                    let axes = rotational[n - 1]
-                        .as_ref()
-                        .map_or_else(|| local_axes(kin, n - 1), |(_, axes)| axes.clone());
-                    (tensor_poly(t), axes)
-                });
-                (to_poly(&l.mass), jv, rot)
-            });
+        // The payload: its mass, J_v,L and, when link n rotates, its tensor with link n's axes, all
+        // in link n's frame (it moves with link n).
+        let payload = robot.payload.as_ref().map(|l| {
+            let com = Vec3(std::array::from_fn(|k| to_poly(&l.com[k])));
+            let jv = kin.local_jacobians(n - 1, &com).0;
+            let rot = l
+                .inertia
+                .as_ref()
+                .filter(|_| kin.rotates[n - 1])
+                .map(|t| (tensor_poly(t), local[n - 1].1.clone()));
+            (to_poly(&l.mass), jv, rot)
+        });
         let mut d = vec![vec![Poly::zero(); n]; n];
         for k in 0..n {
             for j in k..n {
                 let mut parts = Vec::new();
                 for i in 0..n {
-                    let (jk, jj) = (&kin.jv[i][k], &kin.jv[i][j]);
-                    if !jk.is_exact_zero() && !jj.is_exact_zero() {
+                    let (jk, jj) = (&local[i].0[k], &local[i].0[j]);
+                    if !masses[i].is_zero() && !jk.is_exact_zero() && !jj.is_exact_zero() {
                         parts.push(masses[i].mul(&jk.dot(jj)));
                     }
                     if let Some((local, axes)) = &rotational[i] {
