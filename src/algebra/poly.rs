@@ -699,35 +699,52 @@ impl Poly {
 
     /// The sum of many polynomials.
     ///
-    /// The sorted term lists are merged pairwise, as a balanced tree (no hashing, no sorting).
+    /// Two are merged directly; more in one pass over all their sorted term lists at once (a k-way
+    /// merge), so each term is copied once, not once per level of a tree of pairwise sums.
     pub fn sum<'a, I: IntoIterator<Item = &'a Poly>>(items: I) -> Poly {
-        let mut level: Vec<Poly> = Vec::new();
-        let refs: Vec<&Poly> = items.into_iter().filter(|p| !p.is_zero()).collect();
-        match refs.len() {
-            0 => return Poly::zero(),
-            1 => return refs[0].clone(),
+        let one = Rational::one();
+        let parts: Vec<(&Poly, &Rational)> = items.into_iter().map(|p| (p, &one)).collect();
+        Poly::combine(&parts)
+    }
+
+    /// `Σ cᵢ pᵢ`, merged in one pass over the sorted term lists (no hashing, no sorting).
+    pub fn combine(parts: &[(&Poly, &Rational)]) -> Poly {
+        use std::cmp::Reverse;
+        let live: Vec<(&Poly, &Rational)> = parts
+            .iter()
+            .filter(|(p, c)| !p.is_zero() && !c.is_zero())
+            .copied()
+            .collect();
+        match live.as_slice() {
+            [] => return Poly::zero(),
+            [(p, c)] => return p.scale(c),
+            [(a, c), (b, d)] if c.is_one() && d.is_one() => return a.add(b),
             _ => {}
         }
-        // First level straight from the borrowed inputs, then owned partial sums.
-        for pair in refs.chunks(2) {
-            level.push(match pair {
-                [a, b] => a.add(b),
-                [a] => (*a).clone(),
-                _ => unreachable!("chunks of two"),
-            });
+        let live: Vec<(&[(Mono, Rational)], &Rational)> =
+            live.iter().map(|(p, c)| (p.terms.as_slice(), *c)).collect();
+        let total = live.iter().map(|(t, _)| t.len()).sum();
+        let mut out: Vec<(Mono, Rational)> = Vec::with_capacity(total);
+        let mut next = vec![0usize; live.len()];
+        let mut heap = std::collections::BinaryHeap::with_capacity(live.len());
+        for (k, (t, _)) in live.iter().enumerate() {
+            heap.push(Reverse((&t[0].0, k)));
         }
-        while level.len() > 1 {
-            let mut next = Vec::with_capacity(level.len().div_ceil(2));
-            let mut it = level.into_iter();
-            while let Some(a) = it.next() {
-                next.push(match it.next() {
-                    Some(b) => a.add(&b),
-                    None => a,
-                });
+        while let Some(Reverse((m, k))) = heap.pop() {
+            let (terms, scale) = live[k];
+            let c = &terms[next[k]].1;
+            let c = if scale.is_one() { c.clone() } else { c * scale };
+            match out.last_mut() {
+                Some((last, sum)) if last == m => *sum += &c,
+                _ => out.push((m.clone(), c)),
             }
-            level = next;
+            next[k] += 1;
+            if let Some((m, _)) = terms.get(next[k]) {
+                heap.push(Reverse((m, k)));
+            }
         }
-        level.pop().unwrap_or_default()
+        out.retain(|(_, c)| !c.is_zero());
+        Poly { terms: out }
     }
 
     /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
@@ -985,6 +1002,48 @@ mod tests {
 
     fn sorted(p: &Poly) -> bool {
         p.terms().windows(2).all(|w| w[0].0 < w[1].0)
+    }
+
+    /// `combine` and `sum` merge all parts in one pass: the same polynomial as adding them one by
+    /// one, sorted, with cancelled terms gone (including a sum that is zero).
+    #[test]
+    fn linear_combinations_merge_in_one_pass() {
+        let (s, c) = (Expr::sin(&Expr::q(1)), Expr::cos(&Expr::q(2)));
+        let (a, b) = (Expr::symbol("a"), Expr::symbol("b"));
+        let parts: Vec<Poly> = [
+            a.clone() * s.clone() + b.clone(),
+            b.clone() * c.clone() - a.clone() * s.clone(),
+            Expr::int(3) * a.clone() * b.clone() + c.clone(),
+            s.clone() * c.clone() - b.clone(),
+            Expr::int(-2) * c.clone(),
+        ]
+        .iter()
+        .map(to_poly)
+        .collect();
+        let coefficients = [
+            Rational::new(1, 2).unwrap(),
+            Rational::int(-3),
+            Rational::one(),
+            Rational::new(-5, 7).unwrap(),
+            Rational::int(4),
+        ];
+        for k in 0..=parts.len() {
+            let mut want = Poly::zero();
+            let mut plain = Poly::zero();
+            for (p, r) in parts[..k].iter().zip(&coefficients) {
+                want = want.add(&p.scale(r));
+                plain = plain.add(p);
+            }
+            let pairs: Vec<(&Poly, &Rational)> = parts[..k].iter().zip(&coefficients).collect();
+            let got = Poly::combine(&pairs);
+            assert_eq!(got, want, "{k} parts");
+            assert!(sorted(&got));
+            assert_eq!(Poly::sum(&parts[..k]), plain, "{k} parts summed");
+        }
+        // Everything cancels: p + (−p) + 0·q.
+        let (p, q) = (&parts[0], &parts[1]);
+        let (one, minus, zero) = (Rational::one(), Rational::int(-1), Rational::zero());
+        assert!(Poly::combine(&[(p, &one), (q, &zero), (p, &minus)]).is_zero());
     }
 
     #[test]
