@@ -4,19 +4,48 @@
 use super::BenchError;
 use crate::chains;
 use crate::dynamics::Robot;
-use crate::parse::parse_scene;
+use crate::parse::{parse_robot, urdf::UrdfOptions};
 
-/// The example scenes, by name, in the order they are reported.
-pub const EXAMPLES: [(&str, &str); 7] = [
-    ("ppp", include_str!("../../examples/ppp.scene")),
-    ("elbow", include_str!("../../examples/elbow.scene")),
-    ("rpp", include_str!("../../examples/rpp.scene")),
-    ("scara", include_str!("../../examples/scara.scene")),
-    ("stanford", include_str!("../../examples/stanford.scene")),
-    ("puma560", include_str!("../../examples/puma560.scene")),
+/// The example robots, by name, with their file under `examples/` and its text, in the order they are
+/// reported: the scenes of the textbook arms, then two robots as practitioners have them, the UR5 and
+/// the Franka Panda from their URDF files (numeric parameters, joints placed by `origin ... axis`).
+pub const EXAMPLES: [(&str, &str, &str); 9] = [
+    ("ppp", "ppp.scene", include_str!("../../examples/ppp.scene")),
+    (
+        "elbow",
+        "elbow.scene",
+        include_str!("../../examples/elbow.scene"),
+    ),
+    ("rpp", "rpp.scene", include_str!("../../examples/rpp.scene")),
+    (
+        "scara",
+        "scara.scene",
+        include_str!("../../examples/scara.scene"),
+    ),
+    (
+        "stanford",
+        "stanford.scene",
+        include_str!("../../examples/stanford.scene"),
+    ),
+    (
+        "puma560",
+        "puma560.scene",
+        include_str!("../../examples/puma560.scene"),
+    ),
     (
         "puma560_symbolic",
+        "puma560_symbolic.scene",
         include_str!("../../examples/puma560_symbolic.scene"),
+    ),
+    (
+        "ur5.urdf",
+        "ur5.urdf",
+        include_str!("../../examples/ur5.urdf"),
+    ),
+    (
+        "panda.urdf",
+        "panda.urdf",
+        include_str!("../../examples/panda.urdf"),
     ),
 ];
 
@@ -40,8 +69,8 @@ impl RobotSpec {
         }
         EXAMPLES
             .iter()
-            .find(|(name, _)| *name == s)
-            .map(|(name, _)| RobotSpec::Example(name))
+            .find(|(name, _, _)| *name == s)
+            .map(|(name, _, _)| RobotSpec::Example(name))
             .ok_or_else(|| BenchError::UnknownRobot(s.to_string()))
     }
 
@@ -53,21 +82,32 @@ impl RobotSpec {
         }
     }
 
-    /// The scene text.
+    /// The scene text (or URDF).
     pub fn scene(&self) -> String {
         match self {
             RobotSpec::Example(name) => EXAMPLES
                 .iter()
-                .find(|(n, _)| n == name)
-                .map(|(_, text)| text.to_string())
+                .find(|(n, _, _)| n == name)
+                .map(|(_, _, text)| text.to_string())
                 .unwrap_or_default(),
             RobotSpec::Chain(n) => chains::chain_scene(*n),
         }
     }
 
-    /// The robot, parsed from [`RobotSpec::scene`].
+    /// An example's file under `examples/` (`ppp.scene`, `ur5.urdf`); `None` for a chain.
+    pub fn file(&self) -> Option<&'static str> {
+        match self {
+            RobotSpec::Example(name) => EXAMPLES
+                .iter()
+                .find(|(n, _, _)| n == name)
+                .map(|(_, file, _)| *file),
+            RobotSpec::Chain(_) => None,
+        }
+    }
+
+    /// The robot, parsed from [`RobotSpec::scene`] (a scene or a URDF file, as its text says).
     pub fn robot(&self) -> Result<Robot, BenchError> {
-        parse_scene(&self.scene())
+        parse_robot(&self.scene(), &UrdfOptions::default())
             .map(|s| s.robot)
             .map_err(|e| BenchError::Robot {
                 robot: self.name(),
@@ -79,7 +119,7 @@ impl RobotSpec {
     pub fn examples() -> Vec<RobotSpec> {
         EXAMPLES
             .iter()
-            .map(|(n, _)| RobotSpec::Example(n))
+            .map(|(n, _, _)| RobotSpec::Example(n))
             .collect()
     }
 }

@@ -320,7 +320,7 @@ impl Runner {
 
 /// The pages of an example's solution sheet, from the pdflatex log (`Output written on … (N pages`);
 /// the record's `terms` hold the pages. Skipped when pdflatex is absent.
-fn sheet_pages(exe: &Path, name: &str, dof: usize, out: &Path) -> Record {
+fn sheet_pages(exe: &Path, name: &str, path: &str, dof: usize, out: &Path) -> Record {
     let mut rec = Record::new(name, dof, "sheet-pages", Status::Ok);
     let dir = out.join("sheets");
     let tex = dir.join(format!("{name}.tex"));
@@ -332,7 +332,7 @@ fn sheet_pages(exe: &Path, name: &str, dof: usize, out: &Path) -> Record {
     eprintln!("bench: pages of the {name} sheet");
     let made = std::fs::create_dir_all(&dir).and_then(|_| {
         let status = Command::new(exe)
-            .args(["sheet", &format!("examples/{name}.scene"), "-o"])
+            .args(["sheet", path, "-o"])
             .arg(&tex)
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -780,6 +780,14 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     notes.push(format!(
         "time limit {limit} s per process; chains n = 1..{chains}"
     ));
+    if !examples.is_empty() {
+        let files: Vec<&str> = examples.iter().filter_map(RobotSpec::file).collect();
+        notes.push(format!(
+            "examples (under `examples/`): {}; the `.urdf` rows are robots as practitioners have \
+             them, numeric parameters and joints placed by `origin ... axis`",
+            files.join(", ")
+        ));
+    }
 
     let mut records = Vec::new();
     for spec in &examples {
@@ -836,7 +844,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         let RobotSpec::Example(name) = spec else {
             continue;
         };
-        let path = format!("examples/{name}.scene");
+        let path = format!("examples/{}", spec.file().unwrap_or_default());
         let dof = spec.robot().map(|r| r.dof()).unwrap_or(0);
         for (method, cmd) in [
             ("e2e-derive-text", vec!["derive", path.as_str()]),
@@ -865,7 +873,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             budget,
         ));
         if !args.quick {
-            records.push(sheet_pages(&runner.exe, name, dof, &out));
+            records.push(sheet_pages(&runner.exe, name, &path, dof, &out));
         }
     }
     // Identification on random 7-joint chains (issue 10's target: under 2 s each), their angles made
