@@ -750,17 +750,41 @@ impl Poly {
     /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
     /// `d_atom` returns `None` for an atom whose derivative is zero.
     pub fn derive(&self, d_atom: &mut dyn FnMut(AtomId) -> Option<Poly>) -> Poly {
-        let mut memo: FxHashMap<AtomId, Option<Poly>> = FxHashMap::default();
+        // The derivative of each distinct atom, asked for once (a robot's polynomial has a few dozen
+        // atoms, so a sorted list beats a hash map).
+        let mut memo: Vec<(AtomId, Option<Poly>)> = Vec::new();
+        for (m, _) in &self.terms {
+            for &(id, _) in m.0.iter() {
+                if let Err(k) = memo.binary_search_by_key(&id, |(a, _)| *a) {
+                    memo.insert(k, (id, None));
+                }
+            }
+        }
+        for (id, d) in memo.iter_mut() {
+            *d = d_atom(*id);
+        }
+        memo.retain(|(_, d)| d.is_some());
+        if memo.is_empty() {
+            return Poly::zero();
+        }
         let mut acc = Accumulator::with_capacity(self.terms.len());
-        let mut buf = Vec::new();
+        let (mut rest, mut buf) = (Vec::new(), Vec::new());
         for (m, c) in &self.terms {
-            for &(id, e) in m.0.iter() {
-                let d = memo.entry(id).or_insert_with(|| d_atom(id));
-                let Some(d) = d else { continue };
-                let rest = m.with(id, e - 1);
+            for (pos, &(id, e)) in m.0.iter().enumerate() {
+                let Ok(k) = memo.binary_search_by_key(&id, |(a, _)| *a) else {
+                    continue;
+                };
+                let Some(d) = &memo[k].1 else { continue };
+                // `m / id`, the exponent of `id` lowered by one, without a new monomial.
+                rest.clear();
+                rest.extend_from_slice(&m.0[..pos]);
+                if e != 1 {
+                    rest.push((id, e - 1));
+                }
+                rest.extend_from_slice(&m.0[pos + 1..]);
                 let k = c * &Rational::int(e as i64);
                 for (n, dc) in &d.terms {
-                    mul_into(&rest.0, &n.0, &mut buf);
+                    mul_into(&rest, &n.0, &mut buf);
                     acc.add_product(&buf, &k * dc);
                 }
             }
