@@ -16,6 +16,7 @@ pub mod codegen;
 pub mod dynamics;
 pub mod identify;
 pub mod numeric;
+pub mod parallel;
 pub mod parse;
 pub mod print;
 pub mod repl;

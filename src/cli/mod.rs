@@ -392,7 +392,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
                     "error: SYMDYN_THREADS={v:?}: expected a whole number of threads, at least 1"
                 ))
             })?;
-        symdyn::print::parallel::set_threads(n);
+        symdyn::parallel::set_threads(n);
     }
     derive_cmds::set_urdf_options(UrdfOptions {
         base: args.base_link,

@@ -14,79 +14,14 @@
 //! printing a large robot's equations overlaps deriving them. The derivation and the printers then
 //! intern atoms concurrently too, under the same rule: ids order nothing that is printed.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 
-/// The most threads a display job uses by default.
-const MAX_THREADS: usize = 4;
-
-/// The number of threads set by [`set_threads`] (0: decide from the machine).
-static THREADS: AtomicUsize = AtomicUsize::new(0);
-
-/// Sets how many threads [`map`] may use (at least 1; 0 restores the default, the machine's cores
-/// up to [`MAX_THREADS`]). The text printed is the same for every setting.
-pub fn set_threads(n: usize) {
-    THREADS.store(n, Ordering::Relaxed);
-}
-
-/// The number of threads [`map`] uses.
-pub fn threads() -> usize {
-    match THREADS.load(Ordering::Relaxed) {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS)),
-        n => n,
-    }
-}
-
-/// `f` of every item, in the items' order, computed on up to [`threads`] threads when `weight`
-/// (an estimate of each item's cost) sums to at least `min_total`; on the calling thread otherwise.
-/// Threads take items heaviest first, one at a time, so a few large items do not leave a thread idle.
-/// Starting a thread costs a few hundred microseconds here (its stack and allocator heap), so
-/// `min_total` should stand for about that much work.
-pub fn map<T: Sync, R: Send>(
-    items: &[T],
-    weight: impl Fn(&T) -> usize,
-    min_total: usize,
-    f: impl Fn(&T) -> R + Sync,
-) -> Vec<R> {
-    let threads = threads();
-    let weights: Vec<usize> = items.iter().map(&weight).collect();
-    let total: usize = weights.iter().sum();
-    if threads < 2 || items.len() < 2 || total < min_total {
-        return items.iter().map(f).collect();
-    }
-    // Heaviest first; equal weights in item order (a stable sort), so the schedule is reproducible.
-    let mut order: Vec<usize> = (0..items.len()).collect();
-    order.sort_by(|&a, &b| weights[b].cmp(&weights[a]));
-    let next = AtomicUsize::new(0);
-    let (order, next, f) = (&order, &next, &f);
-    let take = move || {
-        let mut mine = Vec::new();
-        loop {
-            let k = next.fetch_add(1, Ordering::Relaxed);
-            let Some(&i) = order.get(k) else { break };
-            mine.push((i, f(&items[i])));
-        }
-        mine
-    };
-    // The calling thread only waits: a thread it starts often begins on its core, and would share
-    // it for a while if the caller kept working (measured: the numeric PUMA 560's equations took
-    // 30% longer in most runs).
-    let mut done: Vec<(usize, R)> = std::thread::scope(|scope| {
-        let helpers: Vec<_> = (0..threads.min(items.len()))
-            .map(|_| scope.spawn(take))
-            .collect();
-        helpers
-            .into_iter()
-            .flat_map(|h| h.join().expect("a display thread does not panic"))
-            .collect()
-    });
-    done.sort_by_key(|&(i, _)| i);
-    done.into_iter().map(|(_, r)| r).collect()
-}
+pub use crate::parallel::{map, set_threads, threads};
 
 /// Below this much work in all (the items' weights: about 3 ns a unit, see `report::side_work`), a
 /// [`pipeline`] that does not overlap its derivation prints on one thread.
-pub const SHARED_WORK: usize = 100_000;
+pub const SHARED_WORK: usize = crate::parallel::WORTH_SHARING;
 
 /// One stage of a [`pipeline`]: returns its items, and the context they are printed in, once their
 /// inputs exist (it may wait for another thread to derive them).
@@ -199,7 +134,9 @@ pub fn pipeline<C: Send + Sync, T: Send + Sync, R: Send>(
     };
     let mut done = std::thread::scope(|scope| {
         let helpers: Vec<_> = (1..threads).map(|_| scope.spawn(helper)).collect();
-        work();
+        // The helpers already use the other cores: the derivation's own work sharing would only
+        // share them too.
+        crate::parallel::serially(work);
         let mut left: Vec<(usize, usize, usize)> = Vec::new();
         for (s, stage) in stages.iter().enumerate() {
             let r = ready[s].get_or_init(|| ready_from(stage()));
@@ -231,19 +168,6 @@ pub fn pipeline<C: Send + Sync, T: Send + Sync, R: Send>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn results_come_back_in_the_items_order() {
-        let items: Vec<u64> = (0..200).collect();
-        // Uneven costs, so threads finish out of order.
-        let work =
-            |&n: &u64| (0..(n % 7) * 1000).fold(n, |a, b| a.wrapping_mul(31).wrapping_add(b));
-        let want: Vec<u64> = items.iter().map(work).collect();
-        assert_eq!(map(&items, |&n| n as usize, 0, work), want);
-        // Below the threshold: on this thread, the same.
-        assert_eq!(map(&items, |_| 1, usize::MAX, work), want);
-        assert!(map(&[] as &[u64], |_| 1, 0, work).is_empty());
-    }
 
     #[test]
     fn a_pipeline_prints_each_stage_in_order_once_its_inputs_exist() {

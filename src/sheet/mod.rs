@@ -113,7 +113,7 @@ const NOTATION: &str = "%%NOTATION%%\n";
 pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // The proofs of the last section take about as long as all the others on a large robot, and
     // depend on nothing they print: they run on a thread of their own meanwhile (unless the display
-    // layer is held to one thread, `print::parallel::set_threads`, or the robot has fewer than three
+    // layer is held to one thread, `parallel::set_threads`, or the robot has fewer than three
     // revolute joints: the PPP, RPP and elbow arms prove in less time than a thread takes to start).
     let full = opts.scope == Scope::Full;
     let revolute = der
@@ -122,7 +122,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         .iter()
         .filter(|j| j.kind == crate::dynamics::JointKind::Revolute)
         .count();
-    if crate::print::parallel::threads() < 2 || revolute < 3 {
+    if crate::parallel::threads() < 2 || revolute < 3 {
         return document(der, opts, || full.then(|| agreement(der)));
     }
     std::thread::scope(|scope| {

@@ -1,0 +1,141 @@
+//! Deterministic work sharing: [`map`] applies a pure function to many items on a few threads and
+//! returns the results in the items' order, so whatever is built or printed from them is the same on
+//! any number of threads. The derivation ([`crate::dynamics::lagrange`]: the Christoffel symbols, `τ`,
+//! `C`) and the display layer ([`crate::print::parallel`]) share it.
+//!
+//! What may run here must be pure. It may intern new atoms only where their ids order nothing that
+//! is printed or generated (see [`crate::algebra::atom`]): tidying and printing, which order
+//! structurally. The derivation's stages that run here intern no atom at all (sums, products by
+//! `q̇` and `q̈`, derivatives of `sin` and `cos`, whose partner atom is computed, not interned), so
+//! the polynomials they build, term order included, do not depend on the threads.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
+
+/// The most threads a job uses by default.
+const MAX_THREADS: usize = 4;
+
+/// The machine's threads, up to [`MAX_THREADS`].
+static MACHINE: OnceLock<usize> = OnceLock::new();
+
+/// The number of threads set by [`set_threads`] (0: decide from the machine).
+static THREADS: AtomicUsize = AtomicUsize::new(0);
+
+/// Sets how many threads [`map`] may use (at least 1; 0 restores the default, the machine's cores
+/// up to [`MAX_THREADS`]). Every result is the same for every setting.
+pub fn set_threads(n: usize) {
+    THREADS.store(n, Ordering::Relaxed);
+}
+
+/// The number of threads [`map`] uses.
+pub fn threads() -> usize {
+    match THREADS.load(Ordering::Relaxed) {
+        // Asked once: the standard library reads the cgroup's files every time (tens of µs).
+        0 => *MACHINE.get_or_init(|| {
+            std::thread::available_parallelism().map_or(1, |n| n.get().min(MAX_THREADS))
+        }),
+        n => n,
+    }
+}
+
+thread_local! {
+    /// Set while this thread runs [`serially`].
+    static SERIAL: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with every [`map`] it calls on this thread kept on this thread: for work that already
+/// runs beside another thread's (a derivation while a helper prints its earlier stages), where more
+/// threads would only share the same cores.
+pub fn serially<R>(f: impl FnOnce() -> R) -> R {
+    let before = SERIAL.with(|s| s.replace(true));
+    let r = f();
+    SERIAL.with(|s| s.set(before));
+    r
+}
+
+/// `f` of every item, in the items' order, computed on up to [`threads`] threads when `weight`
+/// (an estimate of each item's cost) sums to at least `min_total`; on the calling thread otherwise,
+/// and always inside [`serially`].
+/// Threads take items heaviest first, one at a time, so a few large items do not leave a thread idle.
+/// Starting a thread costs a few hundred microseconds here (its stack and allocator heap), so
+/// `min_total` should stand for about that much work.
+pub fn map<T: Sync, R: Send>(
+    items: &[T],
+    weight: impl Fn(&T) -> usize,
+    min_total: usize,
+    f: impl Fn(&T) -> R + Sync,
+) -> Vec<R> {
+    let weights: Vec<usize> = items.iter().map(&weight).collect();
+    let total: usize = weights.iter().sum();
+    if items.len() < 2 || total < min_total {
+        return items.iter().map(f).collect();
+    }
+    let threads = threads();
+    if threads < 2 || SERIAL.with(|s| s.get()) {
+        return items.iter().map(f).collect();
+    }
+    // Heaviest first; equal weights in item order (a stable sort), so the schedule is reproducible.
+    let mut order: Vec<usize> = (0..items.len()).collect();
+    order.sort_by(|&a, &b| weights[b].cmp(&weights[a]));
+    let next = AtomicUsize::new(0);
+    let (order, next, f) = (&order, &next, &f);
+    let take = move || {
+        let mut mine = Vec::new();
+        loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            let Some(&i) = order.get(k) else { break };
+            mine.push((i, f(&items[i])));
+        }
+        mine
+    };
+    // The calling thread only waits: a thread it starts often begins on its core, and would share
+    // it for a while if the caller kept working (measured: the numeric PUMA 560's equations took
+    // 30% longer in most runs).
+    let mut done: Vec<(usize, R)> = std::thread::scope(|scope| {
+        let helpers: Vec<_> = (0..threads.min(items.len()))
+            .map(|_| scope.spawn(take))
+            .collect();
+        helpers
+            .into_iter()
+            .flat_map(|h| h.join().expect("a worker thread does not panic"))
+            .collect()
+    });
+    done.sort_by_key(|&(i, _)| i);
+    done.into_iter().map(|(_, r)| r).collect()
+}
+
+/// About a third of a millisecond of work (the items' weights, in units of about 3 ns): below it
+/// a job stays on the calling thread, since starting a thread costs a few hundred microseconds here.
+pub const WORTH_SHARING: usize = 100_000;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn results_come_back_in_the_items_order() {
+        let items: Vec<u64> = (0..200).collect();
+        // Uneven costs, so threads finish out of order.
+        let work =
+            |&n: &u64| (0..(n % 7) * 1000).fold(n, |a, b| a.wrapping_mul(31).wrapping_add(b));
+        let want: Vec<u64> = items.iter().map(work).collect();
+        assert_eq!(map(&items, |&n| n as usize, 0, work), want);
+        // Below the threshold: on this thread, the same.
+        assert_eq!(map(&items, |_| 1, usize::MAX, work), want);
+        assert!(map(&[] as &[u64], |_| 1, 0, work).is_empty());
+    }
+
+    #[test]
+    fn serially_keeps_every_item_on_this_thread_and_restores() {
+        let items: Vec<u64> = (0..64).collect();
+        let here = std::thread::current().id();
+        let on = |_: &u64| std::thread::current().id();
+        let inside = serially(|| {
+            // Nested: still on this thread after the inner call returns.
+            serially(|| ());
+            map(&items, |_| usize::MAX / 128, 0, on)
+        });
+        assert!(inside.iter().all(|&id| id == here));
+        assert!(!SERIAL.with(|s| s.get()), "the flag is restored");
+    }
+}
