@@ -25,30 +25,12 @@ enum Repr {
     Big(Box<BigRational>),
 }
 
-/// Greatest common divisor of two `u128`s, binary (no 128-bit division, which is a library call);
-/// the `u64` loop once both fit.
-fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
-    if a == 0 {
-        return b;
-    }
-    if b == 0 {
-        return a;
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        if let (Ok(x), Ok(y)) = (u64::try_from(a), u64::try_from(b)) {
-            // `a` is odd: the common factors of two are all in `shift`.
-            return (gcd_u64(x, y) as u128) << shift;
-        }
-        b >>= b.trailing_zeros();
-        if a > b {
-            std::mem::swap(&mut a, &mut b);
-        }
-        b -= a;
-        if b == 0 {
-            return a << shift;
-        }
+/// Greatest common divisor of two `u128`s: the `u64` path when both fit, else the binary loop in
+/// 128 bits (no 128-bit division, which is a library call).
+fn gcd_u128(a: u128, b: u128) -> u128 {
+    match (u64::try_from(a), u64::try_from(b)) {
+        (Ok(x), Ok(y)) => gcd_u64(x, y) as u128,
+        _ => binary_gcd(a, b),
     }
 }
 
@@ -361,28 +343,34 @@ impl PartialOrd for Rational {
     }
 }
 
-/// Greatest common divisor of two unsigned integers (binary algorithm: no division).
+/// Greatest common divisor of two `u64`s.
 #[inline]
-fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
-    if a == 0 {
-        return b;
-    }
-    if b == 0 {
-        return a;
-    }
+fn gcd_u64(a: u64, b: u64) -> u64 {
     if a == 1 || b == 1 {
         // Integers and unit numerators are most coefficients; the loop would take a step a bit.
         return 1;
     }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
+    binary_gcd(a, b)
+}
+
+/// Greatest common divisor by the binary algorithm (shifts and subtractions, no division).
+#[inline]
+fn binary_gcd<T: num_traits::PrimInt>(mut a: T, mut b: T) -> T {
+    if a.is_zero() {
+        return b;
+    }
+    if b.is_zero() {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros() as usize;
+    a = a >> a.trailing_zeros() as usize;
     loop {
-        b >>= b.trailing_zeros();
+        b = b >> b.trailing_zeros() as usize;
         if a > b {
             std::mem::swap(&mut a, &mut b);
         }
-        b -= a;
-        if b == 0 {
+        b = b - a;
+        if b.is_zero() {
             return a << shift;
         }
     }
