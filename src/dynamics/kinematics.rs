@@ -210,11 +210,7 @@ impl Kinematics {
     /// `u_{m−1} = u_m − Q_{m−1} o_m` (its origin), column `j` holds only the angles `q_j … q_i`: the
     /// world-frame columns hold every angle from `q_1` on, and the dot products of the inertia matrix
     /// cancel them again, which is where an inertia matrix built from them spends its time.
-    pub fn local_jacobians(
-        &self,
-        i: usize,
-        com: &Vec3<Poly>,
-    ) -> (Vec<Vec3<Poly>>, Vec<Vec3<Poly>>) {
+    pub fn local_jacobians(&self, i: usize, com: &Vec3<Poly>) -> (Columns, Columns) {
         let n = self.joints.len();
         // q[m], u[m] for m = 0..=i+1 (frame m of the book; frame i + 1 is link i's own).
         let last = i + 1;

@@ -85,7 +85,7 @@ fn is_constant(p: &Poly) -> bool {
 }
 
 /// A link's inertia tensor in its own frame and the columns of `R_iᵀ J_ω,i`.
-type LinkInertia = (Mat3<Poly>, Vec<Vec3<Poly>>);
+type LinkInertia = (Mat3<Poly>, Columns);
 
 fn quad(u: &Vec3<Poly>, m: &Mat3<Poly>, v: &Vec3<Poly>) -> Poly {
     u.dot(&m.mul_vec(v))
