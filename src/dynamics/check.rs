@@ -125,9 +125,29 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
     let mut probe = cd.arena.expander(opts.proof.budget);
     let fits = opts.proof.budget > 0 && cd.tau_ne.iter().all(|t| probe.expand(t).is_ok());
     if fits {
-        let mut claims: Vec<Claim> = opts.frames.iter().map(|&f| agreement(der, f)).collect();
-        claims.extend(identities(der));
-        return claims;
+        // Newton–Euler in the inertial frame is the costliest derivation here (its vectors hold
+        // every angle from the base on) and depends on no other: a thread derives it meanwhile,
+        // for a robot with three revolute joints or more (below that it takes less time than a
+        // thread takes to start).
+        let revolute = der
+            .robot()
+            .joints
+            .iter()
+            .filter(|j| j.kind == super::JointKind::Revolute)
+            .count();
+        let ahead = opts.frames.contains(&Frame::Inertial)
+            && revolute >= 3
+            && crate::parallel::threads() >= 2;
+        return std::thread::scope(|scope| {
+            if ahead {
+                scope.spawn(|| {
+                    der.newton_euler(Frame::Inertial);
+                });
+            }
+            let mut claims: Vec<Claim> = opts.frames.iter().map(|&f| agreement(der, f)).collect();
+            claims.extend(identities(der));
+            claims
+        });
     }
     randomized(der, opts)
 }
