@@ -129,14 +129,8 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
         // every angle from the base on) and depends on no other: a thread derives it meanwhile,
         // for a robot with three revolute joints or more (below that it takes less time than a
         // thread takes to start).
-        let revolute = der
-            .robot()
-            .joints
-            .iter()
-            .filter(|j| j.kind == super::JointKind::Revolute)
-            .count();
         let ahead = opts.frames.contains(&Frame::Inertial)
-            && revolute >= 3
+            && der.robot().revolute_joints() >= 3
             && crate::parallel::threads() >= 2;
         return std::thread::scope(|scope| {
             if ahead {

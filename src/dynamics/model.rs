@@ -516,6 +516,15 @@ impl Robot {
         self.joints.len()
     }
 
+    /// The number of revolute joints. Below three, a robot's derivations and proofs take less
+    /// time than a thread takes to start, so they are not shared out.
+    pub fn revolute_joints(&self) -> usize {
+        self.joints
+            .iter()
+            .filter(|j| j.kind == JointKind::Revolute)
+            .count()
+    }
+
     /// Checks the model's invariants (see [`check_joint`]); masses, centres of mass, inertias and
     /// gravity must be constant, and no mass a negative number ([`check_mass`]).
     pub fn validate(&self) -> Result<(), ModelError> {

@@ -116,13 +116,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // layer is held to one thread, `parallel::set_threads`, or the robot has fewer than three
     // revolute joints: the PPP, RPP and elbow arms prove in less time than a thread takes to start).
     let full = opts.scope == Scope::Full;
-    let revolute = der
-        .robot()
-        .joints
-        .iter()
-        .filter(|j| j.kind == crate::dynamics::JointKind::Revolute)
-        .count();
-    if crate::parallel::threads() < 2 || revolute < 3 {
+    if crate::parallel::threads() < 2 || der.robot().revolute_joints() < 3 {
         return document(der, opts, || full.then(|| agreement(der)));
     }
     std::thread::scope(|scope| {
