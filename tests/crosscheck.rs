@@ -155,6 +155,15 @@ proptest! {
     }
 }
 
+/// An example robot (a scene or a URDF file) from `examples/`.
+fn example_robot(file: &str) -> Robot {
+    let path = format!("{}/examples/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("example readable");
+    symdyn::parse::parse_robot(&text, &symdyn::parse::urdf::UrdfOptions::default())
+        .expect("example parses")
+        .robot
+}
+
 /// A `Derivation` keeps Euler–Lagrange in stages, each in its own cell, and `derive` asks for them
 /// in another order than `Lagrange::derive` computes them (τ first, C only for JSON, K never): every
 /// quantity must be the one the one-shot derivation gives.
@@ -162,7 +171,6 @@ proptest! {
 fn staged_euler_lagrange_is_the_one_shot_derivation() {
     use symdyn::dynamics::kinematics::Kinematics;
     use symdyn::dynamics::lagrange::Lagrange;
-    use symdyn::parse::{parse_robot, urdf::UrdfOptions};
     for example in [
         "ppp.scene",
         "elbow_payload.scene",
@@ -170,11 +178,7 @@ fn staged_euler_lagrange_is_the_one_shot_derivation() {
         "scara.scene",
         "stanford.scene",
     ] {
-        let path = format!("{}/examples/{example}", env!("CARGO_MANIFEST_DIR"));
-        let text = std::fs::read_to_string(&path).expect("example readable");
-        let robot = parse_robot(&text, &UrdfOptions::default())
-            .expect("example parses")
-            .robot;
+        let robot = example_robot(example);
         let once = Lagrange::derive(&robot, &Kinematics::new(&robot));
         let der = Derivation::new(robot).expect("valid");
         assert_eq!(*der.motion().tau, *once.tau, "{example}: τ asked for first");
@@ -204,7 +208,7 @@ fn local_jacobians_are_the_world_jacobians_seen_from_the_link() {
     use symdyn::algebra::{to_poly, Poly};
     use symdyn::dynamics::kinematics::Kinematics;
     use symdyn::dynamics::vec3::Vec3;
-    use symdyn::parse::{parse_robot, parse_scene, urdf::UrdfOptions};
+    use symdyn::parse::parse_scene;
     let mut robots: Vec<(String, Robot)> = Vec::new();
     for example in [
         "ppp.scene",
@@ -217,12 +221,7 @@ fn local_jacobians_are_the_world_jacobians_seen_from_the_link() {
         "ur5.urdf",
         "panda.urdf",
     ] {
-        let path = format!("{}/examples/{example}", env!("CARGO_MANIFEST_DIR"));
-        let text = std::fs::read_to_string(&path).expect("example readable");
-        let robot = parse_robot(&text, &UrdfOptions::default())
-            .expect("parses")
-            .robot;
-        robots.push((example.to_string(), robot));
+        robots.push((example.to_string(), example_robot(example)));
     }
     for seed in 0..6 {
         for convention in [Convention::Standard, Convention::Modified] {
