@@ -245,6 +245,18 @@ impl Rational {
 
     /// Greatest common divisor of two rationals: gcd of numerators over lcm of denominators (positive).
     pub fn gcd(&self, other: &Rational) -> Rational {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &other.0) {
+            // Numerators' gcd over the denominators' lcm, in 128 bits: `b/g · d` < 2¹²⁶, and the
+            // quotient is coprime to that lcm (each prime of it divides a denominator, so not both
+            // numerators), so only the small-or-big choice is left.
+            let n = gcd_u128(a.unsigned_abs() as u128, c.unsigned_abs() as u128);
+            if n == 0 {
+                return Rational::zero();
+            }
+            let (b, d) = (*b as u128, *d as u128);
+            let lcm = b / gcd_u128(b, d) * d;
+            return Rational::from_reduced_i128(n as i128, lcm as i128);
+        }
         let n = self.numer().gcd(&other.numer());
         let d = self.denom().lcm(&other.denom());
         if n.is_zero() {
@@ -637,6 +649,11 @@ mod tests {
             let a = if negate { a.saturating_neg() } else { a };
             let (x, y) = (r(a, b), r(c, d));
             let (xb, yb) = (x.to_big(), y.to_big());
+            let gcd = Rational::from_big(BigRational::new(
+                Integer::gcd(xb.numer(), yb.numer()),
+                Integer::lcm(xb.denom(), yb.denom()),
+            ));
+            proptest::prop_assert_eq!(x.gcd(&y), gcd, "gcd({}, {})", x, y);
             for (got, want, op) in [(&x + &y, &xb + &yb, "+"), (&x - &y, &xb - &yb, "-"), (&x * &y, &xb * &yb, "*")] {
                 proptest::prop_assert_eq!(got.to_big(), want.clone(), "{} {} {}", x, op, y);
                 // Canonical: a value that fits the small form is stored in it.

@@ -11,12 +11,15 @@
 //! and factored ([`super::Grouping::Trig`]). Every term is `coefficient × key`, and the terms add up
 //! to the side exactly.
 
-use super::collect::{collect, KeyClass};
-use super::contract::contract_trig;
+use super::contract::contract_normal;
 use super::factor::factor_list;
 use super::group::{group, Grouping};
+use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::expr::Expr;
-use crate::algebra::normal::normal_form;
+use crate::algebra::normal::to_poly;
+use crate::algebra::number::Rational;
+use crate::algebra::poly::{Mono, Poly};
+use crate::algebra::symbol::Symbol;
 
 /// The ordered display terms of an equation side `lhs`: its `q̈` terms by coordinate index, its
 /// `q̇`-product terms, then its remaining terms grouped by trig monomial; each term a factored
@@ -24,32 +27,25 @@ use crate::algebra::normal::normal_form;
 ///
 /// `m1 q̈1 + m2 q̈1 + m3 q̈1 + m1 g + m2 g + m3 g` gives `[(m1 + m2 + m3) q̈1, (m1 + m2 + m3) g]`.
 pub fn equation_terms(lhs: &Expr) -> Vec<Expr> {
-    terms_of_normal(normal_form(lhs))
+    equation_terms_poly(&to_poly(lhs))
 }
 
-/// [`equation_terms`] of a polynomial (its own normal form: no conversion from an expression).
-pub fn equation_terms_poly(lhs: &crate::algebra::Poly) -> Vec<Expr> {
-    terms_of_normal(lhs.to_expr())
-}
-
-/// [`equation_terms`] of an expression in normal form.
-fn terms_of_normal(lhs: Expr) -> Vec<Expr> {
+/// [`equation_terms`] of a polynomial (its own normal form). The side is collected by its key atoms
+/// on the polynomial's own monomials, so every coefficient is already in normal form when the
+/// display rules ([`contract_normal`], [`group`], [`factor_list`]) take it.
+pub fn equation_terms_poly(lhs: &Poly) -> Vec<Expr> {
     let mut out = Vec::new();
-    let mut rest = lhs;
-    for keys in [KeyClass::Acceleration, KeyClass::Velocity] {
-        let mut left = Expr::zero();
-        for (key, coeff) in collect(&rest, keys) {
-            if key.is_one() {
-                left = coeff;
-            } else {
-                let coeff = group(&contract_trig(&coeff), Grouping::Leading);
-                out.push(Expr::product(factor_list(&coeff).into_iter().chain([key])));
-            }
+    let mut rest = lhs.clone();
+    for role in [Order::Acceleration, Order::Rate] {
+        let (groups, left) = collect_poly(&rest, role);
+        for (key, coeff) in groups {
+            let coeff = group(&contract_normal(&coeff.to_expr()), Grouping::Leading);
+            out.push(Expr::product(factor_list(&coeff).into_iter().chain([key])));
         }
         rest = left;
     }
     // Simpler trig parts first (`… cos(q1) + … cos(q1+q2)`, as Spong writes φ1), then canonical order.
-    let mut others: Vec<Expr> = group(&contract_trig(&rest), Grouping::Trig)
+    let mut others: Vec<Expr> = group(&contract_normal(&rest.to_expr()), Grouping::Trig)
         .terms()
         .into_iter()
         .map(|(t, c)| t.scale(&c))
@@ -57,6 +53,43 @@ fn terms_of_normal(lhs: Expr) -> Vec<Expr> {
     others.sort_by_key(trig_size);
     out.extend(others);
     out
+}
+
+/// The derivative order whose coordinates key a collection: `q̈` or `q̇`.
+#[derive(Clone, Copy)]
+enum Order {
+    Acceleration = 2,
+    Rate = 1,
+}
+
+/// The terms of `p` collected by their factors among the coordinates of `order` ([`collect`] on the
+/// polynomial's monomials): `(key, coefficient)` pairs in the canonical order of the keys, and the
+/// terms without such factors. Dropping key atoms from the distinct monomials of one key leaves
+/// distinct monomials, so no coefficient is zero.
+fn collect_poly(p: &Poly, order: Order) -> (Vec<(Expr, Poly)>, Poly) {
+    let is_key = |id: AtomId| {
+        atom::class(id) == Class::Coord
+            && matches!(atom::symbol_of(id), Some(Symbol::Coord { order: o, .. }) if o == order as u8)
+    };
+    let mut groups: std::collections::BTreeMap<Mono, Vec<(Mono, Rational)>> = Default::default();
+    let mut left = Vec::new();
+    for (m, c) in p.terms() {
+        let (key, other): (Vec<_>, Vec<_>) = m.factors().iter().partition(|(id, _)| is_key(*id));
+        if key.is_empty() {
+            left.push((m.clone(), c.clone()));
+        } else {
+            groups
+                .entry(Mono::from_sorted(key))
+                .or_default()
+                .push((Mono::from_sorted(other), c.clone()));
+        }
+    }
+    let mut keyed: Vec<(Expr, Poly)> = groups
+        .into_iter()
+        .map(|(key, terms)| (Poly::term(key, Rational::one()).to_expr(), Poly::from_terms(terms)))
+        .collect();
+    keyed.sort_by(|a, b| a.0.cmp(&b.0));
+    (keyed, Poly::from_terms(left))
 }
 
 /// The size of the trig factors of a term (0 for none).
