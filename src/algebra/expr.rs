@@ -312,6 +312,37 @@ impl Expr {
         Expr::make(Kind::Mul(Rational::one(), vec![(base, e)]))
     }
 
+    /// The monomial `Π bᵢ^kᵢ` (coefficient 1) of bases that are already canonical, pairwise
+    /// distinct, neither numbers, square roots nor sums, in the total order, with non-zero exponents:
+    /// what [`Expr::product`] makes of them, without its merging. For a polynomial's terms
+    /// ([`crate::algebra::Poly::to_expr`]).
+    pub(crate) fn monomial_of_sorted_bases(factors: Vec<(Expr, i64)>) -> Expr {
+        debug_assert!(factors.windows(2).all(|w| w[0].0 < w[1].0));
+        debug_assert!(factors.iter().all(|(b, k)| *k != 0
+            && !matches!(b.kind(), Kind::Num(_) | Kind::Sqrt(_) | Kind::Add(..) | Kind::Mul(..))));
+        match factors.len() {
+            0 => Expr::one(),
+            1 if factors[0].1 == 1 => factors.into_iter().next().expect("one factor").0,
+            _ => Expr::make(Kind::Mul(Rational::one(), factors)),
+        }
+    }
+
+    /// The sum `constant + Σ cᵢ tᵢ` of distinct monomials `tᵢ` (each as
+    /// [`Expr::monomial_of_sorted_bases`] makes it, none 1) with non-zero coefficients, in the total
+    /// order: what [`Expr::sum`] makes of them, without its merging.
+    pub(crate) fn sum_of_sorted_monomials(constant: Rational, terms: Vec<(Expr, Rational)>) -> Expr {
+        debug_assert!(terms.windows(2).all(|w| w[0].0 < w[1].0));
+        debug_assert!(terms.iter().all(|(t, c)| !c.is_zero() && !t.is_one()));
+        match (constant.is_zero(), terms.len()) {
+            (_, 0) => Expr::num(constant),
+            (true, 1) => {
+                let (t, c) = terms.into_iter().next().expect("one term");
+                t.scale(&c)
+            }
+            _ => Expr::make(Kind::Add(constant, terms)),
+        }
+    }
+
     /// The canonical sum of the given expressions.
     pub fn sum<I: IntoIterator<Item = Expr>>(items: I) -> Expr {
         let mut constant = Rational::zero();

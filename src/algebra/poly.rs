@@ -14,7 +14,7 @@
 
 use super::atom::{self, AtomId, Class};
 use super::error::AlgebraError;
-use super::expr::Expr;
+use super::expr::{Expr, Kind as ExprKind};
 use super::fast_hash::FxHashMap;
 use super::number::{split_square, Rational};
 use super::pi_field;
@@ -807,6 +807,63 @@ impl Poly {
 
     /// The canonical expression of this polynomial (a sorted, expanded sum).
     pub fn to_expr(&self) -> Expr {
+        self.to_expr_direct().unwrap_or_else(|| self.to_expr_general())
+    }
+
+    /// [`Poly::to_expr`] built node by node, when every atom is a symbol, `sin`/`cos` or π (the
+    /// bases of a product as they stand): each atom's expression and its rank in the total order are
+    /// found once, each term's factors sorted by rank, and the terms sorted once; nothing is merged,
+    /// since the monomials are distinct. `None` when an atom is a square root or another expression.
+    fn to_expr_direct(&self) -> Option<Expr> {
+        let mut atoms: Vec<AtomId> = self
+            .terms
+            .iter()
+            .flat_map(|(m, _)| m.0.iter().map(|&(id, _)| id))
+            .collect();
+        atoms.sort_unstable();
+        atoms.dedup();
+        let mut bases = Vec::with_capacity(atoms.len());
+        for &id in &atoms {
+            let e = atom::to_expr(id);
+            if !matches!(e.kind(), ExprKind::Sym(_) | ExprKind::Fun(..) | ExprKind::Pi) {
+                return None;
+            }
+            bases.push(e);
+        }
+        // rank[i]: the place of atoms[i]'s expression in the total order.
+        let mut order: Vec<usize> = (0..atoms.len()).collect();
+        order.sort_by(|&a, &b| bases[a].cmp(&bases[b]));
+        let mut rank = vec![0u32; atoms.len()];
+        for (r, &i) in order.iter().enumerate() {
+            rank[i] = r as u32;
+        }
+        let index = |id: AtomId| atoms.binary_search(&id).expect("collected above");
+        let mut constant = Rational::zero();
+        let mut terms = Vec::with_capacity(self.terms.len());
+        let mut buf: Vec<(u32, usize, i32)> = Vec::new();
+        for (m, c) in &self.terms {
+            if m.0.is_empty() {
+                constant = c.clone();
+                continue;
+            }
+            buf.clear();
+            buf.extend(m.0.iter().map(|&(id, e)| {
+                let i = index(id);
+                (rank[i], i, e)
+            }));
+            buf.sort_unstable_by_key(|&(r, _, _)| r);
+            let factors = buf
+                .iter()
+                .map(|&(_, i, e)| (bases[i].clone(), i64::from(e)))
+                .collect();
+            terms.push((Expr::monomial_of_sorted_bases(factors), c.clone()));
+        }
+        terms.sort_by(|a, b| a.0.cmp(&b.0));
+        Some(Expr::sum_of_sorted_monomials(constant, terms))
+    }
+
+    /// [`Poly::to_expr`] through the general constructors, for any atoms.
+    fn to_expr_general(&self) -> Expr {
         let mut cache: FxHashMap<AtomId, Expr> = FxHashMap::default();
         let terms: Vec<Expr> = self
             .terms
@@ -1026,6 +1083,41 @@ mod tests {
 
     fn sorted(p: &Poly) -> bool {
         p.terms().windows(2).all(|w| w[0].0 < w[1].0)
+    }
+
+    /// The direct construction of `to_expr` is the general one: on every polynomial of the
+    /// derivations of example robots (numeric and symbolic parameters, standard and modified DH,
+    /// placed joints, a URDF), on square roots (general path) and on constants and single terms.
+    #[test]
+    fn direct_expressions_are_the_general_ones() {
+        let examples = [
+            include_str!("../../examples/stanford.scene"),
+            include_str!("../../examples/puma560.scene"),
+            include_str!("../../examples/scara.scene"),
+            include_str!("../../examples/ur5.urdf"),
+            include_str!("../../examples/ppp.scene"),
+        ];
+        let mut polys = Vec::new();
+        for text in examples {
+            let scene = crate::parse::parse_robot(text, &Default::default()).unwrap();
+            let der = crate::dynamics::Derivation::new(scene.robot).unwrap();
+            polys.extend(der.mass_matrix().d.iter().flatten().cloned());
+            polys.extend(der.christoffel().iter().flatten().flatten().cloned());
+            let motion = der.motion();
+            polys.extend(motion.tau.iter().cloned());
+            polys.extend(motion.g.iter().cloned());
+            polys.push(motion.p.clone());
+        }
+        for text in ["0", "3/4", "x", "-x", "2*x", "x^2*sin(q1)^-1 + 1/2", "sqrt(2)*x + pi^2*y"] {
+            polys.push(to_poly(&crate::parse::parse_expr(text).unwrap()));
+        }
+        assert!(polys.iter().any(|p| p.len() > 1000));
+        for p in &polys {
+            assert_eq!(p.to_expr(), p.to_expr_general(), "{p:?}");
+        }
+        // Every derived polynomial here takes the direct path; a square root does not.
+        let direct = polys.iter().filter(|p| p.to_expr_direct().is_some()).count();
+        assert_eq!(direct, polys.len() - 1);
     }
 
     /// `combine` and `sum` merge all parts in one pass: the same polynomial as adding them one by
