@@ -319,7 +319,10 @@ impl Expr {
     pub(crate) fn monomial_of_sorted_bases(factors: Vec<(Expr, i64)>) -> Expr {
         debug_assert!(factors.windows(2).all(|w| w[0].0 < w[1].0));
         debug_assert!(factors.iter().all(|(b, k)| *k != 0
-            && !matches!(b.kind(), Kind::Num(_) | Kind::Sqrt(_) | Kind::Add(..) | Kind::Mul(..))));
+            && !matches!(
+                b.kind(),
+                Kind::Num(_) | Kind::Sqrt(_) | Kind::Add(..) | Kind::Mul(..)
+            )));
         match factors.len() {
             0 => Expr::one(),
             1 if factors[0].1 == 1 => factors.into_iter().next().expect("one factor").0,
@@ -330,7 +333,10 @@ impl Expr {
     /// The sum `constant + Σ cᵢ tᵢ` of distinct monomials `tᵢ` (each as
     /// [`Expr::monomial_of_sorted_bases`] makes it, none 1) with non-zero coefficients, in the total
     /// order: what [`Expr::sum`] makes of them, without its merging.
-    pub(crate) fn sum_of_sorted_monomials(constant: Rational, terms: Vec<(Expr, Rational)>) -> Expr {
+    pub(crate) fn sum_of_sorted_monomials(
+        constant: Rational,
+        terms: Vec<(Expr, Rational)>,
+    ) -> Expr {
         debug_assert!(terms.windows(2).all(|w| w[0].0 < w[1].0));
         debug_assert!(terms.iter().all(|(t, c)| !c.is_zero() && !t.is_one()));
         match (constant.is_zero(), terms.len()) {

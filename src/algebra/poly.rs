@@ -807,7 +807,8 @@ impl Poly {
 
     /// The canonical expression of this polynomial (a sorted, expanded sum).
     pub fn to_expr(&self) -> Expr {
-        self.to_expr_direct().unwrap_or_else(|| self.to_expr_general())
+        self.to_expr_direct()
+            .unwrap_or_else(|| self.to_expr_general())
     }
 
     /// [`Poly::to_expr`] built node by node, when every atom is a symbol, `sin`/`cos` or π (the
@@ -825,7 +826,10 @@ impl Poly {
         let mut bases = Vec::with_capacity(atoms.len());
         for &id in &atoms {
             let e = atom::to_expr(id);
-            if !matches!(e.kind(), ExprKind::Sym(_) | ExprKind::Fun(..) | ExprKind::Pi) {
+            if !matches!(
+                e.kind(),
+                ExprKind::Sym(_) | ExprKind::Fun(..) | ExprKind::Pi
+            ) {
                 return None;
             }
             bases.push(e);
@@ -1108,7 +1112,15 @@ mod tests {
             polys.extend(motion.g.iter().cloned());
             polys.push(motion.p.clone());
         }
-        for text in ["0", "3/4", "x", "-x", "2*x", "x^2*sin(q1)^-1 + 1/2", "sqrt(2)*x + pi^2*y"] {
+        for text in [
+            "0",
+            "3/4",
+            "x",
+            "-x",
+            "2*x",
+            "x^2*sin(q1)^-1 + 1/2",
+            "sqrt(2)*x + pi^2*y",
+        ] {
             polys.push(to_poly(&crate::parse::parse_expr(text).unwrap()));
         }
         assert!(polys.iter().any(|p| p.len() > 1000));
@@ -1116,7 +1128,10 @@ mod tests {
             assert_eq!(p.to_expr(), p.to_expr_general(), "{p:?}");
         }
         // Every derived polynomial here takes the direct path; a square root does not.
-        let direct = polys.iter().filter(|p| p.to_expr_direct().is_some()).count();
+        let direct = polys
+            .iter()
+            .filter(|p| p.to_expr_direct().is_some())
+            .count();
         assert_eq!(direct, polys.len() - 1);
     }
 

@@ -155,6 +155,41 @@ pub(super) fn cmp_factor_lists(a: &[(u32, i32)], b: &[(u32, i32)]) -> Ordering {
     a.len().cmp(&b.len())
 }
 
+/// The first eight factors of a list as one integer that orders as [`cmp_factor_lists`] orders
+/// them: a byte per rank (plus one, so that a list that ends sorts first) and a byte per exponent
+/// (the higher power first). `None` when a rank or an exponent does not fit its byte.
+fn prefix_key(factors: &[(u32, i32)]) -> Option<u128> {
+    let mut key = 0u128;
+    for (i, &(r, e)) in factors.iter().take(8).enumerate() {
+        if r >= 255 || !(-127..=127).contains(&e) {
+            return None;
+        }
+        let pair = ((r as u128 + 1) << 8) | (127 - e) as u128;
+        key |= pair << (112 - 16 * i);
+    }
+    Some(key)
+}
+
+/// Sorts the terms `(start, end, coefficient)` of `buf` in the canonical order of their factor
+/// lists ([`cmp_factor_lists`]), by [`prefix_key`] first and the whole lists only on a tie (lists
+/// longer than eight factors): the same order, without walking two lists for most comparisons.
+fn sort_terms(terms: &mut [(usize, usize, &Rational)], buf: &[(u32, i32)]) {
+    let keys: Option<Vec<u128>> = terms.iter().map(|t| prefix_key(&buf[t.0..t.1])).collect();
+    let Some(keys) = keys else {
+        terms.sort_by(|a, b| cmp_factor_lists(&buf[a.0..a.1], &buf[b.0..b.1]));
+        return;
+    };
+    let mut keyed: Vec<(u128, usize)> = keys.into_iter().zip(0..).collect();
+    let list = |i: usize| &buf[terms[i].0..terms[i].1];
+    // Distinct monomials have distinct lists, so an unstable sort gives the one order.
+    keyed.sort_unstable_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then_with(|| cmp_factor_lists(list(a.1), list(b.1)))
+    });
+    let sorted: Vec<(usize, usize, &Rational)> = keyed.iter().map(|&(_, i)| terms[i]).collect();
+    terms.copy_from_slice(&sorted);
+}
+
 /// Renders products of ranked atoms in one style, each `base^e` rendered once: the text the product
 /// printers of [`super::text`] and [`super::latex`] give, for products without negative powers
 /// (others go through those printers). Products are written into a caller's buffer
@@ -325,7 +360,7 @@ impl<'a> Renderer<'a> {
             buf[start..].sort_unstable_by_key(|&(r, _)| r);
             terms.push((start, buf.len(), c));
         }
-        terms.sort_by(|a, b| cmp_factor_lists(&buf[a.0..a.1], &buf[b.0..b.1]));
+        sort_terms(&mut terms, &buf);
         if let Some(c) = constant {
             terms.push((0, 0, c));
         }
@@ -403,6 +438,46 @@ mod tests {
 
     fn p(s: &str) -> Poly {
         to_poly(&crate::parse::parse_expr(s).expect("valid expression"))
+    }
+
+    proptest::proptest! {
+        /// Sorting by the packed prefix and then the whole lists is the order of
+        /// `cmp_factor_lists`: lists longer than eight factors, lists that are prefixes of others,
+        /// equal ranks with other powers, negative powers, and ranks or powers past a byte.
+        #[test]
+        fn prefix_keys_sort_as_the_factor_lists(
+            lists in proptest::collection::btree_set(
+                proptest::collection::vec((0u32..12, -3i32..4), 0..11),
+                1..40,
+            ),
+            wide in proptest::bool::ANY,
+        ) {
+            let mut buf = Vec::new();
+            let one = Rational::one();
+            let mut terms = Vec::new();
+            for list in &lists {
+                // A factor list holds each rank once, sorted, with non-zero powers.
+                let mut l: Vec<(u32, i32)> = list.iter().filter(|f| f.1 != 0).copied().collect();
+                l.sort_by_key(|f| f.0);
+                l.dedup_by_key(|f| f.0);
+                if wide {
+                    if let Some(f) = l.last_mut() {
+                        f.0 += 300;
+                    }
+                }
+                let start = buf.len();
+                buf.extend(l);
+                terms.push((start, buf.len(), &one));
+            }
+            // Keep distinct lists only, as a polynomial's monomials are.
+            terms.sort_by(|a, b| cmp_factor_lists(&buf[a.0..a.1], &buf[b.0..b.1]));
+            terms.dedup_by(|a, b| buf[a.0..a.1] == buf[b.0..b.1]);
+            let want: Vec<&[(u32, i32)]> = terms.iter().map(|t| &buf[t.0..t.1]).collect();
+            terms.reverse();
+            sort_terms(&mut terms, &buf);
+            let got: Vec<&[(u32, i32)]> = terms.iter().map(|t| &buf[t.0..t.1]).collect();
+            proptest::prop_assert_eq!(got, want);
+        }
     }
 
     #[test]

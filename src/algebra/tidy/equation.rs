@@ -86,7 +86,12 @@ fn collect_poly(p: &Poly, order: Order) -> (Vec<(Expr, Poly)>, Poly) {
     }
     let mut keyed: Vec<(Expr, Poly)> = groups
         .into_iter()
-        .map(|(key, terms)| (Poly::term(key, Rational::one()).to_expr(), Poly::from_terms(terms)))
+        .map(|(key, terms)| {
+            (
+                Poly::term(key, Rational::one()).to_expr(),
+                Poly::from_terms(terms),
+            )
+        })
         .collect();
     keyed.sort_by(|a, b| a.0.cmp(&b.0));
     (keyed, Poly::from_terms(left))
