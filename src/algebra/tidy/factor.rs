@@ -30,6 +30,8 @@ pub fn factor_common(e: &Expr) -> Expr {
 pub fn factor_list(e: &Expr) -> Vec<Expr> {
     match e.kind() {
         Kind::Num(_) | Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => vec![e.clone()],
+        // A function of a symbol is its own factored form (the common case: sin q1, cos q2).
+        Kind::Fun(_, a) if matches!(a.kind(), Kind::Sym(_)) => vec![e.clone()],
         Kind::Fun(f, a) => vec![Expr::fun(*f, &factor_common(a))],
         Kind::Mul(c, fs) => {
             let mut out = vec![Expr::num(c.clone())];
@@ -50,6 +52,21 @@ pub fn factor_list(e: &Expr) -> Vec<Expr> {
 }
 
 /// A term of a sum: its rational coefficient and its factors `(base, exponent)`.
+/// The factors of a term of a sum (coefficient 1) whose bases are all plain (symbols, π, surds,
+/// functions of a symbol), which [`factor_common`] leaves as they are; `None` otherwise.
+fn plain_factors(t: &Expr) -> Option<Vec<(Expr, i64)>> {
+    let plain = |b: &Expr| match b.kind() {
+        Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => true,
+        Kind::Fun(_, a) => matches!(a.kind(), Kind::Sym(_)),
+        Kind::Num(_) | Kind::Add(..) | Kind::Mul(..) => false,
+    };
+    match t.kind() {
+        Kind::Mul(c, fs) if c.is_one() && fs.iter().all(|(b, _)| plain(b)) => Some(fs.clone()),
+        _ if plain(t) => Some(vec![(t.clone(), 1)]),
+        _ => None,
+    }
+}
+
 struct Term {
     coeff: Rational,
     factors: Vec<(Expr, i64)>,
@@ -100,6 +117,10 @@ fn factor_sum(e: &Expr) -> Vec<Expr> {
         .terms()
         .into_iter()
         .map(|(t, c)| {
+            // A product of plain bases is already factored: its factors as they stand.
+            if let Some(factors) = plain_factors(&t) {
+                return Term { coeff: c, factors };
+            }
             let (k, rest) = factor_common(&t).split_coeff();
             Term {
                 coeff: &c * &k,
