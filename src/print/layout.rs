@@ -57,32 +57,34 @@ fn command_width(name: &[u8]) -> usize {
 /// The estimated printed width of LaTeX math source: every character one unit (any byte that starts
 /// a character counts as one), binary operators two, layout characters none, and a command as its
 /// name says ([`command_width`]); a control symbol (`\\`, `\,`, `\{`) is one unit for a brace and
-/// none otherwise. Every byte is first counted alone ([`BYTE_WIDTH`]), then the commands, found
-/// by their backslashes, are counted again as a whole.
+/// none otherwise. One pass: a byte counts as [`BYTE_WIDTH`] says, a backslash reads the command or
+/// control symbol it starts.
 pub fn width(latex: &str) -> usize {
     let bytes = latex.as_bytes();
-    let mut w: usize = bytes.iter().map(|&b| BYTE_WIDTH[b as usize] as usize).sum();
+    let mut w = 0;
     let mut i = 0;
-    while let Some(off) = memchr::memchr(b'\\', &bytes[i..]) {
-        let start = i + off + 1;
+    while i < bytes.len() {
+        let b = bytes[i];
+        if b != b'\\' {
+            w += BYTE_WIDTH[b as usize] as usize;
+            i += 1;
+            continue;
+        }
+        let start = i + 1;
         let mut end = start;
         while end < bytes.len() && bytes[end].is_ascii_alphabetic() {
             end += 1;
         }
-        if end == start {
+        if end > start {
+            w += command_width(&bytes[start..end]);
+            i = end;
+        } else {
             // A control symbol: its byte (if any) counts as the symbol, and starts nothing.
-            match bytes.get(start) {
-                Some(&n) => {
-                    w = w - BYTE_WIDTH[n as usize] as usize + usize::from(n == b'{' || n == b'}');
-                    i = start + 1;
-                }
-                None => i = start,
+            if let Some(&n) = bytes.get(start) {
+                w += usize::from(n == b'{' || n == b'}');
             }
-            continue;
+            i = start + 1;
         }
-        // The name's letters were counted one each.
-        w = w - (end - start) + command_width(&bytes[start..end]);
-        i = end;
     }
     w
 }
@@ -809,6 +811,54 @@ impl Layout {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The width in two passes: every byte counted alone, then each command found by its
+    /// backslash counted again as a whole.
+    fn width_in_two_passes(latex: &str) -> usize {
+        let bytes = latex.as_bytes();
+        let mut w: usize = bytes.iter().map(|&b| BYTE_WIDTH[b as usize] as usize).sum();
+        let mut i = 0;
+        while let Some(off) = bytes[i..].iter().position(|&b| b == b'\\') {
+            let start = i + off + 1;
+            let mut end = start;
+            while end < bytes.len() && bytes[end].is_ascii_alphabetic() {
+                end += 1;
+            }
+            if end == start {
+                match bytes.get(start) {
+                    Some(&n) => {
+                        w = w - BYTE_WIDTH[n as usize] as usize
+                            + usize::from(n == b'{' || n == b'}');
+                        i = start + 1;
+                    }
+                    None => i = start,
+                }
+                continue;
+            }
+            w = w - (end - start) + command_width(&bytes[start..end]);
+            i = end;
+        }
+        w
+    }
+
+    proptest::proptest! {
+        /// The one-pass width is the two-pass one on LaTeX-like text: commands, control symbols
+        /// (`\\`, `\{`, a trailing backslash), braces, operators and non-ASCII characters.
+        #[test]
+        fn width_in_one_pass_is_the_width_in_two(
+            parts in proptest::collection::vec(
+                proptest::sample::select(vec![
+                    "\\cos", "\\quad", "\\frac", "\\left(", "\\right)", "\\Xi", "\\\\", "\\{",
+                    "\\}", "\\,", "\\", "{", "}", "_", "^", " ", "+", "-", "=", "&", "q", "2",
+                    "θ", "ä", "m_{1}", "\\dot{q}_{1}",
+                ]),
+                0..40,
+            )
+        ) {
+            let text: String = parts.concat();
+            proptest::prop_assert_eq!(width(&text), width_in_two_passes(&text), "{}", text);
+        }
+    }
 
     /// [`width`] read byte by byte, as a reference.
     fn width_by_bytes(latex: &str) -> usize {
