@@ -330,9 +330,10 @@ impl Expr {
         }
     }
 
-    /// The sum `constant + Σ cᵢ tᵢ` of distinct monomials `tᵢ` (each as
-    /// [`Expr::monomial_of_sorted_bases`] makes it, none 1) with non-zero coefficients, in the total
-    /// order: what [`Expr::sum`] makes of them, without its merging.
+    /// The sum `constant + Σ cᵢ tᵢ` of distinct terms `tᵢ` (products with coefficient 1, none the
+    /// number 1) with non-zero coefficients, in the total order: what [`Expr::sum`] makes of them
+    /// once it has merged them (its last step), and what [`crate::algebra::Poly::to_expr`] gives for
+    /// its monomials ([`Expr::monomial_of_sorted_bases`]).
     pub(crate) fn sum_of_sorted_monomials(
         constant: Rational,
         terms: Vec<(Expr, Rational)>,
@@ -385,14 +386,7 @@ impl Expr {
         if terms.last().is_some_and(|(_, sum)| sum.is_zero()) {
             terms.pop();
         }
-        match (constant.is_zero(), terms.len()) {
-            (_, 0) => Expr::num(constant),
-            (true, 1) => {
-                let (t, c) = terms.into_iter().next().expect("one term");
-                t.scale(&c)
-            }
-            _ => Expr::make(Kind::Add(constant, terms)),
-        }
+        Expr::sum_of_sorted_monomials(constant, terms)
     }
 
     /// The canonical product of the given expressions.
