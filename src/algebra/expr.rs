@@ -370,6 +370,13 @@ impl Expr {
                 _ => all.push((item.clone(), Rational::one())),
             }
         }
+        Expr::sum_of_terms(constant, all)
+    }
+
+    /// `constant + Σ cᵢ tᵢ` for terms `tᵢ` as [`Expr::terms`] gives them (coefficient 1, not a
+    /// number), in any order and possibly repeated: [`Expr::sum`] without splitting each term's
+    /// coefficient off again.
+    pub(crate) fn sum_of_terms(constant: Rational, mut all: Vec<(Expr, Rational)>) -> Expr {
         all.sort_by(|a, b| a.0.cmp(&b.0));
         let mut terms: Vec<(Expr, Rational)> = Vec::with_capacity(all.len());
         for (t, c) in all {

@@ -193,17 +193,31 @@ impl Term {
     }
 }
 
-/// Rebuilds a sum from the terms not `used`, plus the `merged` ones; `None` if nothing merged.
+/// Rebuilds a sum from the terms not `used`, plus the `merged` ones; `None` if nothing merged. The
+/// kept terms go in as they stand (monomial and coefficient), never rebuilt.
 pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Option<Expr> {
     if merged.is_empty() {
         return None;
     }
-    let kept = terms
-        .iter()
-        .zip(used)
-        .filter(|(_, u)| !**u)
-        .map(|(t, _)| t.expr());
-    Some(Expr::sum(kept.chain(merged)))
+    let mut constant = Rational::zero();
+    let mut all: Vec<(Expr, Rational)> = Vec::with_capacity(terms.len());
+    for (t, _) in terms.iter().zip(used).filter(|(_, u)| !**u) {
+        if t.factors.is_empty() {
+            constant += &t.coeff;
+        } else {
+            all.push((t.monomial.clone(), t.coeff.clone()));
+        }
+    }
+    for m in merged {
+        for (t, c) in m.terms() {
+            if t.is_one() {
+                constant += &c;
+            } else {
+                all.push((t, c));
+            }
+        }
+    }
+    Some(Expr::sum_of_terms(constant, all))
 }
 
 /// The other factors `R` of a candidate term (as a canonical factor list) and its angles `A < B`.
@@ -261,10 +275,19 @@ fn angle_sum(e: &Expr) -> Option<Expr> {
         .into_iter()
         .filter(|(_, cands)| cands.len() >= 2)
         .map(|((rest, a, b), cands)| {
-            let rest = Expr::product(rest.into_iter().map(|(base, k)| {
-                base.pow(k)
-                    .expect("bases of a canonical product are non-zero")
-            }));
+            // What is left of a canonical product's factor list is sorted and distinct: of plain
+            // bases (the normal form's), it is a product as it stands.
+            let plain = rest
+                .iter()
+                .all(|(base, _)| matches!(base.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi));
+            let rest = if plain {
+                Expr::monomial_of_sorted_bases(rest)
+            } else {
+                Expr::product(rest.into_iter().map(|(base, k)| {
+                    base.pow(k)
+                        .expect("bases of a canonical product are non-zero")
+                }))
+            };
             ((rest, a, b), cands)
         })
         .collect();
