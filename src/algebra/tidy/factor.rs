@@ -99,6 +99,39 @@ impl Term {
 
 /// The exponent with which `base` divides every term: the smallest power if all are positive, the
 /// one closest to zero if all are negative, otherwise 0.
+/// `Σ scale · t / monomial` over the terms: each quotient's factors as they stand when every base
+/// is a symbol, a function or π (already a sorted product: [`Expr::monomial_of_sorted_bases`]),
+/// built by [`Term::divided`] otherwise.
+fn divided_sum(terms: &[Term], scale: &Rational, monomial: &[(Expr, i64)]) -> Expr {
+    let direct = terms.iter().all(|t| {
+        t.factors
+            .iter()
+            .all(|(b, _)| matches!(b.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi))
+    });
+    if !direct {
+        return Expr::sum(terms.iter().map(|t| t.divided(scale, monomial)));
+    }
+    let mut constant = Rational::zero();
+    let mut pairs = Vec::with_capacity(terms.len());
+    for t in terms {
+        let factors: Vec<(Expr, i64)> = t
+            .factors
+            .iter()
+            .filter_map(|(b, k)| {
+                let m = monomial.iter().find(|(c, _)| c == b).map_or(0, |(_, m)| *m);
+                (k - m != 0).then(|| (b.clone(), k - m))
+            })
+            .collect();
+        let c = &t.coeff * scale;
+        if factors.is_empty() {
+            constant += &c;
+        } else {
+            pairs.push((Expr::monomial_of_sorted_bases(factors), c));
+        }
+    }
+    Expr::sum_of_terms(constant, pairs)
+}
+
 fn common_exponent(terms: &[Term], base: &Expr) -> i64 {
     let mut exps = terms.iter().map(|t| t.exponent(base));
     let first = exps.next().unwrap_or(0);
@@ -141,12 +174,10 @@ fn factor_sum(e: &Expr) -> Vec<Expr> {
         _ => Vec::new(),
     };
     if terms.len() < 2 || content.is_zero() {
-        return vec![Expr::sum(
-            terms.iter().map(|t| t.divided(&Rational::one(), &[])),
-        )];
+        return vec![divided_sum(&terms, &Rational::one(), &[])];
     }
     let scale = content.recip().expect("non-zero content");
-    let mut inner = Expr::sum(terms.iter().map(|t| t.divided(&scale, &monomial)));
+    let mut inner = divided_sum(&terms, &scale, &monomial);
     let mut content = content;
     if inner.reads_negative() {
         inner = -&inner;

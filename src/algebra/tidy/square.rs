@@ -23,6 +23,17 @@ use std::collections::BTreeMap;
 /// cos² B − 1)` over the terms of `e`; `None` if no pair matches.
 pub fn square_sum(e: &Expr) -> Option<Expr> {
     let terms = Term::split(e);
+    // Only a term with two squared cosines can start a pair: without one, the monomials are not
+    // indexed at all.
+    let squared_cosines = |t: &Term| {
+        t.factors
+            .iter()
+            .filter(|(b, k)| matches!(b.kind(), Kind::Fun(Func::Cos, x) if *k >= 2 && is_angle(x)))
+            .count()
+    };
+    if !terms.iter().any(|t| squared_cosines(t) >= 2) {
+        return None;
+    }
     let by_monomial: BTreeMap<Expr, usize> = terms
         .iter()
         .enumerate()
