@@ -11,6 +11,7 @@
 use super::collect::{collect, KeyClass};
 use super::factor::factor_list;
 use crate::algebra::expr::{Expr, Kind};
+use crate::algebra::number::Rational;
 use crate::algebra::symbol::Symbol;
 use std::collections::BTreeMap;
 
@@ -43,7 +44,7 @@ pub fn group(e: &Expr, grouping: Grouping) -> Expr {
 /// The terms of `e` grouped by their leading parameter: the first parameter factor in canonical order,
 /// with its power. Terms without a parameter share the key `1`. Like [`collect`]'s result.
 fn by_leading_param(e: &Expr) -> Vec<(Expr, Expr)> {
-    let mut groups: BTreeMap<Expr, Vec<Expr>> = BTreeMap::new();
+    let mut groups: BTreeMap<Expr, Vec<(Expr, Rational)>> = BTreeMap::new();
     for (t, c) in e.terms() {
         let mut factors = t.factors();
         let lead = factors
@@ -56,15 +57,35 @@ fn by_leading_param(e: &Expr) -> Vec<(Expr, Expr)> {
             }
             None => Expr::one(),
         };
-        let rest = factors.into_iter().map(|(b, k)| power(&b, k));
-        groups
-            .entry(key)
-            .or_default()
-            .push(Expr::product(std::iter::once(Expr::num(c)).chain(rest)));
+        // What is left of a term is its factors as they stand when they are plain (the normal
+        // form's symbols and functions): kept as (monomial, coefficient) and summed as such.
+        let parts = groups.entry(key).or_default();
+        if factors.is_empty() {
+            parts.push((Expr::one(), c));
+        } else if factors
+            .iter()
+            .all(|(b, _)| matches!(b.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi))
+        {
+            parts.push((Expr::monomial_of_sorted_bases(factors), c));
+        } else {
+            let rest = factors.into_iter().map(|(b, k)| power(&b, k));
+            parts.extend(Expr::product(std::iter::once(Expr::num(c)).chain(rest)).terms());
+        }
     }
     groups
         .into_iter()
-        .map(|(key, parts)| (key, Expr::sum(parts)))
+        .map(|(key, parts)| {
+            let mut constant = Rational::zero();
+            let mut terms = Vec::with_capacity(parts.len());
+            for (t, c) in parts {
+                if t.is_one() {
+                    constant += &c;
+                } else {
+                    terms.push((t, c));
+                }
+            }
+            (key, Expr::sum_of_terms(constant, terms))
+        })
         .collect()
 }
 
