@@ -62,10 +62,10 @@ enum Order {
     Rate = 1,
 }
 
-/// The terms of `p` collected by their factors among the coordinates of `order` ([`collect`] on the
-/// polynomial's monomials): `(key, coefficient)` pairs in the canonical order of the keys, and the
-/// terms without such factors. Dropping key atoms from the distinct monomials of one key leaves
-/// distinct monomials, so no coefficient is zero.
+/// The terms of `p` collected by their factors among the coordinates of `order`
+/// ([`super::collect::collect`] on the polynomial's monomials): `(key, coefficient)` pairs in the
+/// canonical order of the keys, and the terms without such factors. Dropping key atoms from the
+/// distinct monomials of one key leaves distinct monomials, so no coefficient is zero.
 fn collect_poly(p: &Poly, order: Order) -> (Vec<(Expr, Poly)>, Poly) {
     let is_key = |id: AtomId| {
         atom::class(id) == Class::Coord
