@@ -8,10 +8,15 @@
 //! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
 //! `^`, `_`) nothing. Subscripts count as full characters, so the estimate errs on the wide side.
 
+use crate::algebra::fast_hash::FxHasher;
 use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Kind, Symbol};
 use crate::print::equation::{Body, Shown};
 use crate::print::{self, Style};
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
+use std::hash::Hasher;
+use std::sync::Arc;
 
 /// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80): the
 /// width every line of a layout stays within (a single factor wider than a line aside).
@@ -129,10 +134,18 @@ fn sum_width(terms: &[Shown], cap: usize) -> usize {
     w
 }
 
-/// Lays out display math; numbers the abbreviations it introduces across one document.
+/// Lays out display math; numbers the abbreviations it introduces across one document, and names
+/// each abbreviated sum once: a sum met again takes the name it was given where it first appeared,
+/// and is not given again.
 #[derive(Debug, Default)]
 pub struct Layout {
     abbreviations: usize,
+    /// The sums abbreviated so far from terms in the house style ([`Layout::fit_term`]), with
+    /// their numbers.
+    named: HashMap<Expr, usize>,
+    /// The sums abbreviated so far from measured display terms ([`Layout::measured_rows`]), by
+    /// their hash: each sum (kept to compare with, [`measured_eq`]) with its number.
+    named_measured: HashMap<u64, Vec<(Arc<MeasuredSum>, usize)>>,
 }
 
 /// One side of an equation to lay out: terms in the house style, or the display terms of a large side
@@ -253,7 +266,7 @@ enum Left {
     /// Terms in the house style, each with its LaTeX ([`printed`]), laid out by [`Layout::lines`].
     Terms(Vec<(Expr, String)>),
     /// Display terms of a large side, printed and measured.
-    Measured(MeasuredSum),
+    Measured(Arc<MeasuredSum>),
 }
 
 /// Display terms printed and measured for the room of their rows: their texts one after another in
@@ -262,6 +275,9 @@ enum Left {
 struct MeasuredSum {
     text: String,
     terms: Vec<Measured>,
+    /// A hash of the signs, texts and nested sums ([`measured_hash`]), computed once where the sum
+    /// is measured (on the preparing threads), so the layout finds a sum named before by it.
+    hash: u64,
 }
 
 /// A display term of a [`MeasuredSum`].
@@ -284,7 +300,7 @@ enum MeasuredBody {
     /// for a row of its own) after the equations.
     Wide {
         before: String,
-        inner: MeasuredSum,
+        inner: Arc<MeasuredSum>,
         after: String,
     },
 }
@@ -300,6 +316,7 @@ fn measure(shown: Vec<Shown>, room: usize) -> MeasuredSum {
     let mut sum = MeasuredSum {
         text: String::with_capacity(shown.len() * 48),
         terms: Vec::with_capacity(shown.len()),
+        hash: 0,
     };
     for t in shown {
         let wide = matches!(t.body, Body::Group { .. }) && shown_width(&t.body, room) > room;
@@ -311,7 +328,7 @@ fn measure(shown: Vec<Shown>, room: usize) -> MeasuredSum {
                 ..
             } if wide => MeasuredBody::Wide {
                 before,
-                inner: measure(inner, room_before("")),
+                inner: Arc::new(measure(inner, room_before(""))),
                 after,
             },
             body => {
@@ -333,7 +350,67 @@ fn measure(shown: Vec<Shown>, room: usize) -> MeasuredSum {
             body,
         });
     }
+    sum.hash = measured_hash(&sum);
     sum
+}
+
+/// The hash of a measured sum: each term's sign and text, a nested group's parts and its sum's
+/// own hash (already computed). Equal sums hash equally; [`measured_eq`] decides.
+fn measured_hash(sum: &MeasuredSum) -> u64 {
+    let mut h = FxHasher::default();
+    for t in &sum.terms {
+        match &t.body {
+            MeasuredBody::Text { start, end, .. } => {
+                h.write_u8(t.negative as u8);
+                h.write(&sum.text.as_bytes()[*start..*end]);
+            }
+            MeasuredBody::Wide {
+                before,
+                inner,
+                after,
+            } => {
+                h.write_u8(2 + t.negative as u8);
+                h.write(before.as_bytes());
+                h.write_u64(inner.hash);
+                h.write(after.as_bytes());
+            }
+        }
+        // The end of a term, so that texts cannot run into each other.
+        h.write_u8(4);
+    }
+    h.finish()
+}
+
+/// Whether two measured sums are the same: the same signs, texts and nested sums, term by term.
+fn measured_eq(a: &MeasuredSum, b: &MeasuredSum) -> bool {
+    a.hash == b.hash
+        && a.terms.len() == b.terms.len()
+        && a.terms.iter().zip(&b.terms).all(|(x, y)| {
+            x.negative == y.negative
+                && match (&x.body, &y.body) {
+                    (
+                        MeasuredBody::Text {
+                            start: s1, end: e1, ..
+                        },
+                        MeasuredBody::Text {
+                            start: s2, end: e2, ..
+                        },
+                    ) => a.text[*s1..*e1] == b.text[*s2..*e2],
+                    (
+                        MeasuredBody::Wide {
+                            before: b1,
+                            inner: i1,
+                            after: a1,
+                        },
+                        MeasuredBody::Wide {
+                            before: b2,
+                            inner: i2,
+                            after: a2,
+                        },
+                    ) => b1 == b2 && a1 == a2 && measured_eq(i1, i2),
+                    _ => false,
+                }
+        })
 }
 
 /// The bytes of a measured sum's texts, its signs and abbreviated sums.
@@ -363,7 +440,9 @@ impl PreparedEquation {
             .and_then(|room| side.within(room));
         let left = match side {
             Side::Terms(terms) => Left::Terms(printed(flat_terms(&terms))),
-            Side::Shown(shown) => Left::Measured(measure(shown, room_before(&format!(" = {rhs}")))),
+            Side::Shown(shown) => {
+                Left::Measured(Arc::new(measure(shown, room_before(&format!(" = {rhs}")))))
+            }
         };
         let bytes = rhs.len()
             + match &left {
@@ -589,7 +668,7 @@ impl Layout {
                     }
                 }
             }
-            Left::Measured(sum) => self.measured_rows(rows, sum, room, lead, later),
+            Left::Measured(sum) => self.measured_rows(rows, &sum, room, lead, later),
         }
         rows.out.push_str(end);
     }
@@ -600,7 +679,7 @@ impl Layout {
     fn measured_rows(
         &mut self,
         rows: &mut Rows,
-        sum: MeasuredSum,
+        sum: &MeasuredSum,
         room: usize,
         lead: &str,
         later: &mut Vec<(String, Left)>,
@@ -610,15 +689,29 @@ impl Layout {
             rows.out.push('0');
             return;
         }
-        // Every abbreviation of the sum is numbered before any is given: its name, and the term's
-        // text and width with the name.
-        let mut names: Vec<String> = Vec::new();
+        // Every abbreviation of the sum is numbered before any is given: its name, whether it is
+        // new here (a sum named before keeps its name and is not given again), and the term's text
+        // and width with the name.
+        let mut names: Vec<(String, bool)> = Vec::new();
         let mut shortened: Vec<(String, usize)> = Vec::new();
         for t in sum.terms.iter() {
-            if let MeasuredBody::Wide { before, after, .. } = &t.body {
-                self.abbreviations += 1;
+            if let MeasuredBody::Wide {
+                before,
+                inner,
+                after,
+            } = &t.body
+            {
+                let same = self.named_measured.entry(inner.hash).or_default();
+                let (number, new) = match same.iter().find(|(s, _)| measured_eq(s, inner)) {
+                    Some(&(_, number)) => (number, false),
+                    None => {
+                        self.abbreviations += 1;
+                        same.push((Arc::clone(inner), self.abbreviations));
+                        (self.abbreviations, true)
+                    }
+                };
                 let name = print::to_string(
-                    &Expr::sym(Symbol::new(&format!("Xi{}", self.abbreviations))),
+                    &Expr::sym(Symbol::new(&format!("Xi{number}"))),
                     Style::Latex,
                 );
                 let text = [before.as_str(), name.as_str(), after.as_str()]
@@ -629,7 +722,7 @@ impl Layout {
                     .join(" ");
                 let w = width(&text);
                 shortened.push((text, w));
-                names.push(name);
+                names.push((name, new));
             }
         }
         let mut next = shortened.iter();
@@ -664,11 +757,17 @@ impl Layout {
             rows.out.push_str(body);
             filled |= !sign.is_empty() || !body.is_empty();
         }
-        let inners = sum.terms.into_iter().filter_map(|t| match t.body {
-            MeasuredBody::Wide { inner, .. } => Some(Left::Measured(inner)),
+        let inners = sum.terms.iter().filter_map(|t| match &t.body {
+            MeasuredBody::Wide { inner, .. } => Some(Left::Measured(Arc::clone(inner))),
             MeasuredBody::Text { .. } => None,
         });
-        later.extend(names.into_iter().zip(inners));
+        later.extend(
+            names
+                .into_iter()
+                .zip(inners)
+                .filter(|((_, new), _)| *new)
+                .map(|((name, _), inner)| (name, inner)),
+        );
     }
 
     /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
@@ -693,9 +792,15 @@ impl Layout {
         let Some((index, (sum, _))) = widest else {
             return s;
         };
-        self.abbreviations += 1;
-        let name = format!("Xi{}", self.abbreviations);
-        let symbol = Expr::sym(Symbol::new(&name));
+        // A sum named before keeps its name, and is not given again.
+        let (number, new) = match self.named.entry(sum.clone()) {
+            Entry::Occupied(e) => (*e.get(), false),
+            Entry::Vacant(e) => {
+                self.abbreviations += 1;
+                (*e.insert(self.abbreviations), true)
+            }
+        };
+        let symbol = Expr::sym(Symbol::new(&format!("Xi{number}")));
         let rest = factors
             .iter()
             .enumerate()
@@ -709,7 +814,9 @@ impl Layout {
             })
             .chain(std::iter::once(Expr::num(c.clone())));
         let shorter = Expr::product(rest);
-        later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
+        if new {
+            later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
+        }
         term_string(&shorter)
     }
 
@@ -1062,5 +1169,97 @@ mod tests {
         let out = Layout::new().terms(None, &[e], Some("u_{1}"));
         assert!(out.contains("\\Xi_{1} \\ddot{q}_{1} = u_{1}"), "{out}");
         assert!(out.contains("where\n"), "{out}");
+    }
+
+    #[test]
+    fn a_sum_abbreviated_again_keeps_its_name_and_is_given_once() {
+        let long: Vec<String> = (1..=30).map(|i| format!("m{i}")).collect();
+        let other: Vec<String> = (1..=30).map(|i| format!("a{i}")).collect();
+        let sum = long.join(" + ");
+        let mut lay = Layout::new();
+        let first = lay.terms(
+            None,
+            &[parse_expr(&format!("({sum}) * qdd1")).unwrap()],
+            Some("u_{1}"),
+        );
+        // The same sum twice more, and a different one: one new name, given once.
+        let second = lay.terms(
+            None,
+            &[
+                parse_expr(&format!("({sum}) * qdd2")).unwrap(),
+                parse_expr(&format!("({}) * qdd3", other.join(" + "))).unwrap(),
+            ],
+            Some("u_{2}"),
+        );
+        let third = lay.terms(
+            None,
+            &[parse_expr(&format!("({sum}) * qd1")).unwrap()],
+            Some("u_{3}"),
+        );
+        // `\Xi_{k} = …` on a line, or `\Xi_{k} &= …` over rows.
+        let gives = |out: &str, k: usize| {
+            out.contains(&format!("\\Xi_{{{k}}} = ")) || out.contains(&format!("\\Xi_{{{k}}} &= "))
+        };
+        assert!(
+            gives(&first, 1) && first.contains("= m_{1} + m_{2}"),
+            "{first}"
+        );
+        assert!(second.contains("\\Xi_{1} \\ddot{q}_{2}"), "{second}");
+        assert!(second.contains("\\Xi_{2} \\ddot{q}_{3}"), "{second}");
+        assert!(!gives(&second, 1), "{second}");
+        assert!(
+            gives(&second, 2) && second.contains("= a_{1} + a_{2}"),
+            "{second}"
+        );
+        assert!(third.contains("\\Xi_{1} \\dot{q}_{1} = u_{3}"), "{third}");
+        assert!(!third.contains("where"), "{third}");
+        // A fresh layout (another document) names it anew.
+        let alone = Layout::new().terms(
+            None,
+            &[parse_expr(&format!("({sum}) * qdd2")).unwrap()],
+            Some("u_{2}"),
+        );
+        assert!(gives(&alone, 1), "{alone}");
+    }
+
+    #[test]
+    fn a_measured_group_met_again_keeps_its_name_and_is_given_once() {
+        let group = |terms: &[&str], negative_from: usize, after: &str| Shown {
+            negative: false,
+            body: Body::Group {
+                before: "g".to_string(),
+                inner: terms
+                    .iter()
+                    .enumerate()
+                    .map(|(k, t)| product(k >= negative_from, t))
+                    .collect(),
+                after: after.to_string(),
+                style: Style::Latex,
+            },
+        };
+        let texts: Vec<String> = (1..=40).map(|k| format!("a_{{{k}}} c_{{1}}")).collect();
+        let texts: Vec<&str> = texts.iter().map(String::as_str).collect();
+        let side = |after: &str, negative_from: usize| {
+            let mut terms: Vec<Shown> = (1..=30)
+                .map(|k| product(false, &format!("m_{{{k}}} \\ddot{{q}}_{{1}}")))
+                .collect();
+            terms.push(group(&texts, negative_from, after));
+            Side::Shown(terms)
+        };
+        let out = Layout::new().equations(vec![
+            (side("\\dot{q}_{1}", 40), "u_{1}".to_string()),
+            // The same sum again, by another factor.
+            (side("\\dot{q}_{2}", 40), "u_{2}".to_string()),
+            // Its last sign differs: another sum.
+            (side("\\dot{q}_{3}", 39), "u_{3}".to_string()),
+        ]);
+        assert!(out.contains("g \\Xi_{1} \\dot{q}_{1}"), "{out}");
+        assert!(out.contains("g \\Xi_{1} \\dot{q}_{2}"), "{out}");
+        assert!(out.contains("g \\Xi_{2} \\dot{q}_{3}"), "{out}");
+        assert_eq!(out.matches("\\Xi_{1} = ").count(), 1, "{out}");
+        assert_eq!(out.matches("\\Xi_{2} = ").count(), 1, "{out}");
+        assert!(!out.contains("\\Xi_{3}"), "{out}");
+        // 40 terms in each of the two sums given, none printed in the equations themselves.
+        assert_eq!(out.matches(" c_{1}").count(), 80, "{out}");
     }
 }
