@@ -1,7 +1,7 @@
 //! symdyn: exact symbolic equations of motion for serial robot manipulators.
 //!
 //! Layers, bottom up: [`algebra`] (canonical expressions, the normal form and the zero test),
-//! [`parse`] (the pest grammars for expressions and scenes), [`print`] (text, ASCII and LaTeX),
+//! [`parse`] (the pest grammars for expressions and scenes), [`print`](mod@print) (text, ASCII and LaTeX),
 //! [`dynamics`] (robots, Euler–Lagrange, Newton–Euler, proofs), [`report`] (derivations as text) and
 //! [`repl`] (the interactive session, line in, answer out). The library does no I/O; the `symdyn`
 //! binary is a thin shell over it.

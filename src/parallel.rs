@@ -22,7 +22,7 @@ static MACHINE: OnceLock<usize> = OnceLock::new();
 static THREADS: AtomicUsize = AtomicUsize::new(0);
 
 /// Sets how many threads [`map`] may use (at least 1; 0 restores the default, the machine's cores
-/// up to [`MAX_THREADS`]). Every result is the same for every setting.
+/// up to four). Every result is the same for every setting.
 pub fn set_threads(n: usize) {
     THREADS.store(n, Ordering::Relaxed);
 }

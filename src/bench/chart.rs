@@ -8,7 +8,7 @@
 //! text for its layout through a font; [`svg`] wraps the backend so that it estimates text sizes from
 //! the character count instead, so SVG never depends on the machine's fonts. The PNG backend
 //! rasterises glyphs (plotters' `ab_glyph` feature): a TrueType font must be registered first with
-//! [`register_font`] (the runner loads a system font such as DejaVu Sans); without one [`png`] fails
+//! [`register_font`] (the runner loads a system font such as DejaVu Sans); without one [`png`](fn@png) fails
 //! with [`BenchError::Chart`] saying so. The legend is drawn here, not by plotters' series labels
 //! (which always measure text through a font).
 

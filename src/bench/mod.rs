@@ -5,7 +5,7 @@
 //! This module holds the parts that need no I/O:
 //! - [`robots`] — the benchmark robots (the example scenes, embedded, and the generic chains);
 //! - [`size`] — the size of a result, terms and operation counts (defined there);
-//! - [`measure`] — one (robot, method) measurement, run in the child (`symdyn bench-one`);
+//! - [`measure`](mod@measure) — one (robot, method) measurement, run in the child (`symdyn bench-one`);
 //! - [`record`] — a measurement as a JSON line (child → parent) and as a CSV row;
 //! - [`native`] — the harnesses that time generated C and Rust and Pinocchio, and their output;
 //! - [`peer`] — the `ROBOT.json` read by the Python peers, and the peers' JSON answer;

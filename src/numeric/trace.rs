@@ -1,5 +1,5 @@
 //! A tracing scalar: running a recursion over [`Traced`] values records every `f64` operation it would
-//! do as a node of a shared DAG ([`Graph`]), so that one run of Newton–Euler yields a straight-line
+//! do as a node of a shared DAG (a `Graph`), so that one run of Newton–Euler yields a straight-line
 //! program specialised to one robot ([`super::program`]).
 //!
 //! Recording simplifies as it goes:

@@ -61,8 +61,8 @@ fn command_width(name: &[u8]) -> usize {
 
 /// The estimated printed width of LaTeX math source: every character one unit (any byte that starts
 /// a character counts as one), binary operators two, layout characters none, and a command as its
-/// name says ([`command_width`]); a control symbol (`\\`, `\,`, `\{`) is one unit for a brace and
-/// none otherwise. One pass: a byte counts as [`BYTE_WIDTH`] says, a backslash reads the command or
+/// name says (`command_width`); a control symbol (`\\`, `\,`, `\{`) is one unit for a brace and
+/// none otherwise. One pass: a byte counts as `BYTE_WIDTH` says, a backslash reads the command or
 /// control symbol it starts.
 pub fn width(latex: &str) -> usize {
     let bytes = latex.as_bytes();

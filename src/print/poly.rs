@@ -5,7 +5,7 @@
 //! of expressions), it ranks the polynomial's few distinct atoms once by the canonical order of their
 //! bases (`Expr`'s `cmp`), sorts each monomial's factors by rank and the terms by the canonical order
 //! of products (factor lists compared base by base, the higher power first for an equal base, the
-//! shorter list first), and lays out the [`Piece`]s the printers already print. Polynomials with
+//! shorter list first), and lays out the pieces the printers already print. Polynomials with
 //! atoms outside the plain class (opaque expressions, sines of constant angles) take the canonical
 //! route, so the result is always the same text.
 
@@ -191,7 +191,7 @@ fn sort_terms(terms: &mut [(usize, usize, &Rational)], buf: &[(u32, i32)]) {
 }
 
 /// Renders products of ranked atoms in one style, each `base^e` rendered once: the text the product
-/// printers of [`super::text`] and [`super::latex`] give, for products without negative powers
+/// printers of `print::text` and `print::latex` give, for products without negative powers
 /// (others go through those printers). Products are written into a caller's buffer
 /// ([`Renderer::product_into`]), so printing a large sum allocates little beyond its text.
 pub struct Renderer<'a> {

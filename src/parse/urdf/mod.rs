@@ -4,7 +4,7 @@
 //! - The serial chain runs from `base` (the tree's root by default) to `tip` (the single leaf below
 //!   the base by default; several leaves and no tip is an error that lists them).
 //! - Joints `revolute` and `continuous` (one angle), `prismatic`, and `fixed` (its child merged into the
-//!   link it rides on: [`chain`]); `floating`, `planar` and `<mimic>` are refused. Each moving joint is
+//!   link it rides on, by the `chain` module); `floating`, `planar` and `<mimic>` are refused. Each moving joint is
 //!   a placed joint ([`crate::dynamics::placement`]): its `<origin xyz rpy>` then its `<axis>`, exact
 //!   (`0 3 4` is normalised to `0 3/5 4/5`; an axis of irrational length is refused).
 //! - Coordinates `q1 … qN` from base to tip; inputs named after the URDF joints; gravity `[0, 0, −g]`
