@@ -201,6 +201,7 @@ fn quick_bench_writes_consistent_results() {
         "| chain-2 | 2 |",
         "| ppp | 3 |",
         "derive ÷ EL (text / LaTeX / JSON)",
+        "derive ÷ check (text / LaTeX / JSON)",
         "`symdyn --version`",
         "## Identification",
         "| random-7M0 | 7 |",
