@@ -21,7 +21,9 @@
 //!   `m1 g cos q1 + m2 g cos q1 + m2 g (cos q1 cos q2 − sin q1 sin q2)` is
 //!   `(m1 + m2) g cos q1 + m2 g cos(q1 + q2)`;
 //! - [`equation_terms`]: the ordered display terms of an equation side: `q̈` terms, `q̇`-product
-//!   terms, the rest by trig monomial.
+//!   terms, the rest by trig monomial;
+//! - [`rates::group_rates`] (inside [`Grouping::Leading`]): `s12 q̈1 + s12 q̈2` is `s12 (q̈1 + q̈2)`,
+//!   `c12 q̇1² + 2 c12 q̇1 q̇2 + c12 q̇2²` is `c12 (q̇1 + q̇2)²`.
 //!
 //! Rules are named data ([`rule::Rule`], [`contract::ANGLE_IDENTITIES`]) composed by a fixpoint with a
 //! limit; each rule merges two terms into one, so it shrinks the sum. Everything is deterministic:
@@ -39,6 +41,7 @@ pub mod equation;
 pub mod factor;
 pub mod group;
 pub mod pythagoras;
+pub mod rates;
 pub mod rule;
 pub mod square;
 

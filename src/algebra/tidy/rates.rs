@@ -1,0 +1,321 @@
+//! Joint rates as the book writes them: terms that differ only in their rates share one factor,
+//! `s12 q̈1 + s12 q̈2` is `s12 (q̈1 + q̈2)`, and a perfect square of rates comes back whole,
+//! `c12 q̇1² + 2 c12 q̇1 q̇2 + c12 q̇2²` is `c12 (q̇1 + q̇2)²`.
+//!
+//! The Newton–Euler vectors of a revolute chain are made of exactly these: `α_i` holds
+//! `q̈1 + … + q̈i` and `ω_i × (ω_i × r)` holds `(q̇1 + … + q̇i)²` (Spong, Hutchinson and Vidyasagar,
+//! §7.5 and its planar elbow example), which the expanded normal form spreads over many terms.
+//!
+//! [`group_rates`] splits each term of a sum into its rates (`q̇`, `q̈`) and the rest `N` (parameters,
+//! sines and cosines); terms with the same `N` and the same degree in the rates form a group:
+//! - of degree 1, the group is `N k (Σ a_i r_i)`, with `k` the rational content of the coefficients
+//!   (negative when the first would be) and integer `a_i`;
+//! - of degree 2 in `q̇` only, when it is `N k L²` for a linear form `L = Σ l_i q̇_i` (integers, the
+//!   first positive, no common divisor), it is written so; otherwise it is left as it is.
+//!
+//! Groups of one term, and sums without rates, are left as they are. The result is equal to the input
+//! as a function; the order of its terms is the canonical one.
+
+use crate::algebra::expr::{Expr, Kind};
+use crate::algebra::number::Rational;
+use crate::algebra::symbol::Symbol;
+use std::collections::BTreeMap;
+
+/// The order of a rate symbol (`q̇`: 1, `q̈`: 2) and its coordinate's index, for a base that is one.
+fn rate(base: &Expr) -> Option<(u8, u32)> {
+    match base.kind() {
+        Kind::Sym(Symbol::Coord { index, order }) if *order > 0 => Some((*order, *index)),
+        _ => None,
+    }
+}
+
+/// A monomial of rates: its factors `((order, index), exponent)`, `order` 1 for `q̇`, 2 for `q̈`.
+type RateMonomial = Vec<((u8, u32), i64)>;
+
+/// One term split: its coefficient, its rates and the rest.
+struct Split {
+    coeff: Rational,
+    rates: RateMonomial,
+    rest: Expr,
+}
+
+fn split(t: &Expr, coeff: Rational) -> Split {
+    let mut rates = Vec::new();
+    let mut rest = Vec::new();
+    for (b, k) in t.factors() {
+        match rate(&b) {
+            Some(r) if k > 0 => rates.push((r, k)),
+            _ => rest.push(b.pow(k).expect("bases of a canonical product are non-zero")),
+        }
+    }
+    Split {
+        coeff,
+        rates,
+        rest: Expr::product(rest),
+    }
+}
+
+/// The rate symbol's expression.
+fn rate_expr((order, index): (u8, u32)) -> Expr {
+    Expr::sym(Symbol::Coord { index, order })
+}
+
+/// `a / b` for a non-zero `b` (a term's coefficient, or a product of them).
+fn div(a: &Rational, b: &Rational) -> Rational {
+    a * &b.recip().expect("a coefficient of a term is non-zero")
+}
+
+/// The exact square root of a rational, if it has one (`9/4` → `3/2`; negative → none).
+fn sqrt_exact(r: &Rational) -> Option<Rational> {
+    if r.is_negative() {
+        return None;
+    }
+    let root = |n: num_bigint::BigInt| {
+        let s = num_integer::Roots::sqrt(&n);
+        (&s * &s == n).then_some(s)
+    };
+    Rational::from_bigints(root(r.numer())?, root(r.denom())?)
+}
+
+/// `Σ c_i r_i` (rate monomials `r_i`) as `k (Σ a_i r_i)` with integer `a_i` without a common
+/// divisor and the first `a_i` positive.
+fn linear(terms: &[(Expr, Rational)]) -> (Rational, Expr) {
+    let mut k = terms.iter().fold(Rational::zero(), |g, (_, c)| g.gcd(c));
+    if terms[0].1.is_negative() {
+        k = -k;
+    }
+    let inner = Expr::sum(terms.iter().map(|(r, c)| r.scale(&div(c, &k))));
+    (k, inner)
+}
+
+/// `P = Σ a_ij q̇_i q̇_j` as `(k, L)` with `P = k L²`, `L = Σ l_i q̇_i` (integers without a common
+/// divisor, the first positive), if it is one.
+fn square(terms: &[(RateMonomial, Rational)]) -> Option<(Rational, Expr)> {
+    // The coefficients of the squares and of the products, by index.
+    let mut diag: BTreeMap<u32, Rational> = BTreeMap::new();
+    let mut cross: BTreeMap<(u32, u32), Rational> = BTreeMap::new();
+    for (rates, c) in terms {
+        match rates.as_slice() {
+            [((1, i), 2)] => {
+                diag.insert(*i, c.clone());
+            }
+            [((1, i), 1), ((1, j), 1)] => {
+                cross.insert((*i.min(j), *i.max(j)), c.clone());
+            }
+            _ => return None,
+        }
+    }
+    // l_i = ±sqrt(a_ii / a_11) with the sign of a_1i (l_1 = 1): the square's coefficient is a_11.
+    let (&first, k) = diag.iter().next()?;
+    let k = k.clone();
+    let mut l: BTreeMap<u32, Rational> = BTreeMap::new();
+    for (&i, a) in &diag {
+        let ratio = div(a, &k);
+        let root = sqrt_exact(&ratio)?;
+        let root = if i == first {
+            root
+        } else {
+            let c = cross.get(&(first, i))?;
+            if c.is_negative() == k.is_negative() {
+                root
+            } else {
+                -root
+            }
+        };
+        l.insert(i, root);
+    }
+    // Every coefficient of k L² must be there, and nothing else.
+    let indices: Vec<u32> = l.keys().copied().collect();
+    let pairs = indices.len() * (indices.len() - 1) / 2;
+    if cross.len() != pairs {
+        return None;
+    }
+    let two = Rational::int(2);
+    for (x, i) in indices.iter().enumerate() {
+        for j in &indices[x + 1..] {
+            let want = &(&(&two * &k) * &l[i]) * &l[j];
+            if cross.get(&(*i, *j)) != Some(&want) {
+                return None;
+            }
+        }
+    }
+    // Integer l_i: scale by the lcm of their denominators (k by its square).
+    let den = l.values().fold(num_bigint::BigInt::from(1), |m, r| {
+        num_integer::Integer::lcm(&m, &r.denom())
+    });
+    let den = Rational::from(den);
+    let form = Expr::sum(
+        l.iter()
+            .map(|(&i, li)| rate_expr((1, i)).scale(&(li * &den))),
+    );
+    let k = div(&k, &(&den * &den));
+    Some((k, form))
+}
+
+/// `e` with its rates grouped as the module says; `e` itself when it is not a sum or has no group
+/// to write.
+pub fn group_rates(e: &Expr) -> Expr {
+    if !matches!(e.kind(), Kind::Add(..)) {
+        return e.clone();
+    }
+    let terms = e.terms();
+    let split: Vec<Split> = terms.into_iter().map(|(t, c)| split(&t, c)).collect();
+    if split.iter().all(|s| s.rates.is_empty()) {
+        return e.clone();
+    }
+    // By (rest, degree in the rates), in canonical order.
+    let mut groups: BTreeMap<(Expr, i64), Vec<Split>> = BTreeMap::new();
+    for s in split {
+        let degree = s.rates.iter().map(|(_, k)| k).sum();
+        groups.entry((s.rest.clone(), degree)).or_default().push(s);
+    }
+    let mut changed = false;
+    let mut out: Vec<Expr> = Vec::new();
+    for ((rest, degree), members) in groups {
+        let as_they_stand =
+            |members: &[Split]| -> Vec<Expr> {
+                members
+                    .iter()
+                    .map(|s| {
+                        Expr::product(
+                            std::iter::once(Expr::num(s.coeff.clone()))
+                                .chain(std::iter::once(rest.clone()))
+                                .chain(s.rates.iter().map(|&(r, k)| {
+                                    rate_expr(r).pow(k).expect("a rate is non-zero")
+                                })),
+                        )
+                    })
+                    .collect()
+            };
+        if members.len() < 2 || degree == 0 {
+            out.extend(as_they_stand(&members));
+            continue;
+        }
+        let pairs: Vec<(RateMonomial, Rational)> = members
+            .iter()
+            .map(|s| (s.rates.clone(), s.coeff.clone()))
+            .collect();
+        let square = (degree == 2).then(|| square(&pairs)).flatten();
+        let (k, inner) = match square {
+            Some((k, form)) => (k, form.pow(2).expect("a non-zero form")),
+            None => {
+                let terms: Vec<(Expr, Rational)> = pairs
+                    .iter()
+                    .map(|(rates, c)| {
+                        let m = Expr::product(
+                            rates
+                                .iter()
+                                .map(|&(r, k)| rate_expr(r).pow(k).expect("a rate is non-zero")),
+                        );
+                        (m, c.clone())
+                    })
+                    .collect();
+                linear(&terms)
+            }
+        };
+        changed = true;
+        out.push(Expr::product([Expr::num(k), rest.clone(), inner]));
+    }
+    if changed {
+        Expr::sum(out)
+    } else {
+        e.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::algebra::normal::equal;
+    use crate::parse::parse_expr;
+
+    fn check(input: &str, expected: &str) {
+        let e = parse_expr(input).unwrap();
+        let got = group_rates(&e);
+        let want = parse_expr(expected).unwrap();
+        assert!(equal(&e, &got), "value changed: {input} -> {got:?}");
+        assert_eq!(
+            crate::print::to_string(&got, crate::print::Style::Ascii),
+            crate::print::to_string(&want, crate::print::Style::Ascii),
+            "{input}"
+        );
+    }
+
+    #[test]
+    fn rates_that_differ_only_in_their_index_share_one_factor() {
+        check("s*qdd1 + s*qdd2", "s*(qdd1 + qdd2)");
+        check(
+            "-a*s*qdd1 - a*s*qdd2 + a*s*qdd4",
+            "-a*s*(qdd1 + qdd2 - qdd4)",
+        );
+        check("2*x*qdd1 + 4*x*qdd3", "2*x*(qdd1 + 2*qdd3)");
+        check("x*qdd1/2 + x*qdd2/3", "x*(3*qdd1 + 2*qdd2)/6");
+        // Another rest, or one term: as they stand.
+        check("s*qdd1 + c*qdd2", "s*qdd1 + c*qdd2");
+        check("s*qdd1 + g", "s*qdd1 + g");
+    }
+
+    #[test]
+    fn perfect_squares_of_rates_come_back_whole() {
+        check("c*qd1^2 + 2*c*qd1*qd2 + c*qd2^2", "c*(qd1 + qd2)^2");
+        check(
+            "c*qd1^2 + 2*c*qd1*qd2 - 2*c*qd1*qd4 + c*qd2^2 - 2*c*qd2*qd4 + c*qd4^2",
+            "c*(qd1 + qd2 - qd4)^2",
+        );
+        check("-a*qd1^2 - 2*a*qd1*qd2 - a*qd2^2", "-a*(qd1 + qd2)^2");
+        check("qd1^2 + 4*qd1*qd2 + 4*qd2^2 + g", "(qd1 + 2*qd2)^2 + g");
+        check("x*qd1^2/4 + x*qd1*qd2 + x*qd2^2", "x*(qd1 + 2*qd2)^2/4");
+        // Not squares (a missing or a wrong product, a product without its squares): the rates
+        // share their factor, as the book writes the Coriolis terms.
+        check("c*qd1^2 + c*qd2^2", "c*(qd1^2 + qd2^2)");
+        check(
+            "c*qd1^2 + 3*c*qd1*qd2 + c*qd2^2",
+            "c*(qd1^2 + 3*qd1*qd2 + qd2^2)",
+        );
+        check("-2*c*qd1*qd2 - c*qd2^2", "-c*(2*qd1*qd2 + qd2^2)");
+        check("c*qd1*qd2 + c*qd2*qd3", "c*(qd1*qd2 + qd2*qd3)");
+        check(
+            "2*c*qd1^2 + 2*c*qd1*qd2 + c*qd2^2",
+            "c*(2*qd1^2 + 2*qd1*qd2 + qd2^2)",
+        );
+        // Another rest, or another degree: apart.
+        check("c*qd1^2 + s*qd1*qd2", "c*qd1^2 + s*qd1*qd2");
+        check("c*qd1^2 + c*qdd2", "c*qd1^2 + c*qdd2");
+    }
+
+    #[test]
+    fn both_kinds_in_one_sum_as_in_an_acceleration() {
+        // a_c,2 of the planar elbow in frame 0 (Spong §7.5): lc2 (s12 (q̈1 + q̈2) + c12 (q̇1 + q̇2)²).
+        check(
+            "s12*qdd1 + s12*qdd2 + c12*qd1^2 + 2*c12*qd1*qd2 + c12*qd2^2 + l1*s1*qdd1",
+            "s12*(qdd1 + qdd2) + c12*(qd1 + qd2)^2 + l1*s1*qdd1",
+        );
+        // No rates: the sum itself.
+        let e = parse_expr("m1*l1^2 + m2*l2").unwrap();
+        assert_eq!(group_rates(&e), e);
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn an_expanded_square_comes_back_and_the_value_stays(
+            l in proptest::collection::vec(-3i64..=3, 3),
+            (num, den) in (1i64..=6, 1i64..=4),
+            negative in proptest::bool::ANY,
+            rest in 0usize..3,
+            noise in proptest::collection::vec((-2i64..=2, 1u32..=3), 0..3),
+        ) {
+            // k N L² expanded, L = Σ l_i q̇_i with at least two rates, next to terms of other rests.
+            proptest::prop_assume!(l.iter().filter(|&&x| x != 0).count() >= 2);
+            let form = Expr::sum(l.iter().enumerate().map(|(i, &li)| Expr::int(li) * Expr::qd(i as u32 + 1)));
+            let k = Rational::new(if negative { -num } else { num }, den).unwrap();
+            let n = [Expr::symbol("a"), Expr::symbol("a") * Expr::cos(&Expr::q(1)), Expr::one()][rest].clone();
+            let square = Expr::product([Expr::num(k), n, form.pow(2).unwrap()]);
+            let others = Expr::sum(noise.iter().map(|&(c, i)| Expr::int(c) * Expr::symbol("b") * Expr::qdd(i)));
+            let e = crate::algebra::normal::normal_form(&(square + others));
+            let got = group_rates(&e);
+            proptest::prop_assert!(equal(&e, &got), "{e:?} -> {got:?}");
+            let text = crate::print::to_string(&got, crate::print::Style::Ascii);
+            proptest::prop_assert!(text.contains(")^2"), "{e:?} -> {text}");
+        }
+    }
+}
