@@ -118,11 +118,43 @@ fn overfull(log: &str) -> Vec<String> {
         .collect()
 }
 
+/// The abbreviations a sheet gives, `(name, value)` in order: every `\Xi_{k} = …` or `\Xi_{k} &= …`
+/// up to the end of its display, its row breaks and spaces taken out.
+fn abbreviations(tex: &str) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let mut rest = tex;
+    while let Some(at) = rest.find("\\Xi_{") {
+        let after = &rest[at..];
+        let close = after.find('}').expect("a closed subscript");
+        let name = &after[..=close];
+        let tail = &after[close + 1..];
+        let value = tail
+            .strip_prefix(" = ")
+            .or_else(|| tail.strip_prefix(" &= "));
+        let Some(value) = value else {
+            rest = tail;
+            continue;
+        };
+        // The value runs to the end of its display, or to the next row that gives a name.
+        let end = ["\\end{align*}", " \\]", "\n  & \\Xi_{", "\n  \\Xi_{"]
+            .iter()
+            .filter_map(|m| value.find(m))
+            .min()
+            .unwrap_or(value.len());
+        let body: String = value[..end]
+            .replace("\\\\", "")
+            .replace("&\\quad", "")
+            .split_whitespace()
+            .collect();
+        out.push((name.to_string(), body));
+        rest = &value[end..];
+    }
+    out
+}
+
 #[test]
 fn every_example_sheet_compiles_on_the_page() {
-    let Some(pdflatex) = pdflatex() else {
-        return;
-    };
+    let pdflatex = pdflatex();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let dir: PathBuf =
         std::env::temp_dir().join(format!("symdyn-sheet-test-{}", std::process::id()));
@@ -145,6 +177,25 @@ fn every_example_sheet_compiles_on_the_page() {
         let started = std::time::Instant::now();
         let tex = sheet(&derivation(&source), &opts);
         let derived = started.elapsed();
+        // Named subexpressions are introduced once, where they first appear, then used (issue 12):
+        // no name is given twice, and no two names stand for the same sum.
+        let given = abbreviations(&tex);
+        let mut names = std::collections::HashSet::new();
+        let mut values = std::collections::HashMap::new();
+        for (n, v) in &given {
+            if !names.insert(n.clone()) {
+                problems.push(format!("{name}: {n} given twice"));
+            }
+            if let Some(first) = values.insert(v.clone(), n.clone()) {
+                problems.push(format!("{name}: {n} is {first} again"));
+            }
+        }
+        if name == "scara" {
+            assert!(given.len() >= 10, "the SCARA sheet abbreviates: {given:?}");
+        }
+        let Some(pdflatex) = pdflatex else {
+            continue;
+        };
         let log = compile(pdflatex, &dir, &name, &tex);
         eprintln!(
             "{name}: {} bytes, derived and laid out in {:.1?}, pdflatex {:.1?}",
