@@ -16,6 +16,7 @@
 //! Groups of one term, and sums without rates, are left as they are. The result is equal to the input
 //! as a function; the order of its terms is the canonical one.
 
+use super::factor::factor_list;
 use crate::algebra::expr::{Expr, Kind};
 use crate::algebra::number::Rational;
 use crate::algebra::symbol::Symbol;
@@ -216,11 +217,64 @@ pub fn group_rates(e: &Expr) -> Expr {
         changed = true;
         out.push(Expr::product([Expr::num(k), rest.clone(), inner]));
     }
-    if changed {
-        Expr::sum(out)
+    let (out, collected) = collect_parameters(out);
+    if changed || collected {
+        // What every term now shares comes out: `(d4 − lc4) (… + …)`.
+        Expr::product(factor_list(&Expr::sum(out)))
     } else {
         e.clone()
     }
+}
+
+/// Whether `e` holds a rate (`q̇` or `q̈`) anywhere.
+fn has_rate(e: &Expr) -> bool {
+    match e.kind() {
+        Kind::Sym(Symbol::Coord { order, .. }) => *order > 0,
+        Kind::Add(_, ts) => ts.iter().any(|(t, _)| has_rate(t)),
+        Kind::Mul(_, fs) => fs.iter().any(|(b, _)| has_rate(b)),
+        Kind::Fun(_, a) => has_rate(a),
+        Kind::Num(_) | Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => false,
+    }
+}
+
+/// Terms that agree in everything but their parameters and coordinates (a prismatic joint's `q3`
+/// is a length like `d4`) and coefficient, when that holds a rate, share it, the rest summed and
+/// factored: `(q̇1 + q̇2)² a2 d4 s4 − (q̇1 + q̇2)² a2 lc4 s4` is
+/// `(q̇1 + q̇2)² a2 (d4 − lc4) s4`. Whether any did.
+fn collect_parameters(terms: Vec<Expr>) -> (Vec<Expr>, bool) {
+    let power = |(b, k): (Expr, i64)| b.pow(k).expect("bases of a canonical product are non-zero");
+    let mut kept = Vec::with_capacity(terms.len());
+    // The rest (with a rate) -> each term's coefficient times its parameters.
+    let mut groups: BTreeMap<Expr, Vec<Expr>> = BTreeMap::new();
+    for t in terms {
+        let (c, m) = t.split_coeff();
+        type Factors = Vec<(Expr, i64)>;
+        let (params, others): (Factors, Factors) = m.factors().into_iter().partition(|(b, _)| {
+            matches!(
+                b.kind(),
+                Kind::Sym(Symbol::Param(_)) | Kind::Sym(Symbol::Coord { order: 0, .. })
+            )
+        });
+        let rest = Expr::product(others.into_iter().map(power));
+        if !has_rate(&rest) {
+            kept.push(t);
+            continue;
+        }
+        let part =
+            Expr::product(std::iter::once(Expr::num(c)).chain(params.into_iter().map(power)));
+        groups.entry(rest).or_default().push(part);
+    }
+    let mut collected = false;
+    for (rest, parts) in groups {
+        let sum = if parts.len() == 1 {
+            parts.into_iter().next().expect("one part")
+        } else {
+            collected = true;
+            Expr::product(factor_list(&Expr::sum(parts)))
+        };
+        kept.push(Expr::product([sum, rest]));
+    }
+    (kept, collected)
 }
 
 #[cfg(test)]
@@ -272,8 +326,9 @@ mod tests {
             "c*qd1^2 + 3*c*qd1*qd2 + c*qd2^2",
             "c*(qd1^2 + 3*qd1*qd2 + qd2^2)",
         );
-        check("-2*c*qd1*qd2 - c*qd2^2", "-c*(2*qd1*qd2 + qd2^2)");
-        check("c*qd1*qd2 + c*qd2*qd3", "c*(qd1*qd2 + qd2*qd3)");
+        // (and a rate every term has comes out, as any common factor does).
+        check("-2*c*qd1*qd2 - c*qd2^2", "-c*qd2*(2*qd1 + qd2)");
+        check("c*qd1*qd2 + c*qd2*qd3", "c*qd2*(qd1 + qd3)");
         check(
             "2*c*qd1^2 + 2*c*qd1*qd2 + c*qd2^2",
             "c*(2*qd1^2 + 2*qd1*qd2 + qd2^2)",
@@ -290,6 +345,16 @@ mod tests {
             "s12*qdd1 + s12*qdd2 + c12*qd1^2 + 2*c12*qd1*qd2 + c12*qd2^2 + l1*s1*qdd1",
             "s12*(qdd1 + qdd2) + c12*(qd1 + qd2)^2 + l1*s1*qdd1",
         );
+        // Terms that differ in their parameters only share the rest.
+        check(
+            "(qd1 + qd2)^2*a2*d4*s4 - (qd1 + qd2)^2*a2*lc4*s4 + a1*s1*qdd1",
+            "a2*(d4 - lc4)*s4*(qd1 + qd2)^2 + a1*s1*qdd1",
+        );
+        check("l1*s2*qdd1 + lc2*s2*qdd1", "(l1 + lc2)*s2*qdd1");
+        // A prismatic joint's coordinate is a length like the parameters.
+        check("d4*c2*qdd1 + q3*c2*qdd1", "(d4 + q3)*c2*qdd1");
+        // Without a rate in the rest, parameters stay where they are.
+        check("a*s2 + b*s2 + c*qdd1", "a*s2 + b*s2 + c*qdd1");
         // No rates: the sum itself.
         let e = parse_expr("m1*l1^2 + m2*l2").unwrap();
         assert_eq!(group_rates(&e), e);
