@@ -8,10 +8,16 @@
 //!
 //! [`group_rates`] splits each term of a sum into its rates (`q̇`, `q̈`) and the rest `N` (parameters,
 //! sines and cosines); terms with the same `N` and the same degree in the rates form a group:
-//! - of degree 1, the group is `N k (Σ a_i r_i)`, with `k` the rational content of the coefficients
-//!   (negative when the first would be) and integer `a_i`;
 //! - of degree 2 in `q̇` only, when it is `N k L²` for a linear form `L = Σ l_i q̇_i` (integers, the
-//!   first positive, no common divisor), it is written so; otherwise it is left as it is.
+//!   first positive, no common divisor), it is written so;
+//! - otherwise it is `N k (Σ a_i r_i)`, `r_i` its rate monomials, with `k` the rational content of
+//!   the coefficients (negative when the first would be) and integer `a_i`: `s12 (q̈1 + q̈2)`, and
+//!   the book's Coriolis habit `−l1 lc2 s2 (2 q̇1 q̇2 + q̇2²)`.
+//!
+//! Then terms that agree in everything but their parameters and coordinates (a prismatic joint's
+//! `q3` is a length like `d4`), when that rest holds a rate, share it:
+//! `(q̇1 + q̇2)² a2 d4 s4 − (q̇1 + q̇2)² a2 lc4 s4` is `(d4 − lc4) (q̇1 + q̇2)² a2 s4`; and a base every
+//! term then has comes out of the sum.
 //!
 //! Groups of one term, and sums without rates, are left as they are. The result is equal to the input
 //! as a function; the order of its terms is the canonical one.
@@ -156,7 +162,8 @@ fn square(terms: &[(RateMonomial, Rational)]) -> Option<(Rational, Expr)> {
 /// `e` with its rates grouped as the module says; `e` itself when it is not a sum or has no group
 /// to write.
 pub fn group_rates(e: &Expr) -> Expr {
-    if !matches!(e.kind(), Kind::Add(..)) {
+    // Most sums of a sheet (D(q), c_ijk, g) hold no rate: decided without taking them apart.
+    if !matches!(e.kind(), Kind::Add(..)) || !has_rate(e) {
         return e.clone();
     }
     let terms = e.terms();
@@ -219,11 +226,31 @@ pub fn group_rates(e: &Expr) -> Expr {
     }
     let (out, collected) = collect_parameters(out);
     if changed || collected {
-        // What every term now shares comes out: `(d4 − lc4) (… + …)`.
-        Expr::product(factor_list(&Expr::sum(out)))
+        let sum = Expr::sum(out);
+        // What every term now shares comes out: `(d4 − lc4) (… + …)` (without a shared base, the
+        // canonical sum would only take the content back in).
+        if shares_a_base(&sum) {
+            Expr::product(factor_list(&sum))
+        } else {
+            sum
+        }
     } else {
         e.clone()
     }
+}
+
+/// Whether some base is a factor of every term of the sum `e`.
+fn shares_a_base(e: &Expr) -> bool {
+    let terms = e.terms();
+    let Some(((first, _), rest)) = terms.split_first() else {
+        return false;
+    };
+    let others: Vec<Vec<(Expr, i64)>> = rest.iter().map(|(t, _)| t.factors()).collect();
+    !rest.is_empty()
+        && first
+            .factors()
+            .iter()
+            .any(|(b, _)| others.iter().all(|fs| fs.iter().any(|(c, _)| c == b)))
 }
 
 /// Whether `e` holds a rate (`q̇` or `q̈`) anywhere.
@@ -326,9 +353,8 @@ mod tests {
             "c*qd1^2 + 3*c*qd1*qd2 + c*qd2^2",
             "c*(qd1^2 + 3*qd1*qd2 + qd2^2)",
         );
-        // (and a rate every term has comes out, as any common factor does).
-        check("-2*c*qd1*qd2 - c*qd2^2", "-c*qd2*(2*qd1 + qd2)");
-        check("c*qd1*qd2 + c*qd2*qd3", "c*qd2*(qd1 + qd3)");
+        check("-2*c*qd1*qd2 - c*qd2^2", "-c*(2*qd1*qd2 + qd2^2)");
+        check("c*qd1*qd2 + c*qd2*qd3", "c*(qd1*qd2 + qd2*qd3)");
         check(
             "2*c*qd1^2 + 2*c*qd1*qd2 + c*qd2^2",
             "c*(2*qd1^2 + 2*qd1*qd2 + qd2^2)",
