@@ -243,6 +243,20 @@ impl Rational {
         Some(acc)
     }
 
+    /// The exact square root, if this rational is the square of one (`9/4` gives `3/2`); `None` for a
+    /// negative value or a non-square (numerator and denominator are coprime, so both must be
+    /// squares).
+    pub fn sqrt_exact(&self) -> Option<Rational> {
+        if self.is_negative() {
+            return None;
+        }
+        let root = |n: BigInt| {
+            let s = num_integer::Roots::sqrt(&n);
+            (&s * &s == n).then_some(s)
+        };
+        Rational::from_bigints(root(self.numer())?, root(self.denom())?)
+    }
+
     /// Greatest common divisor of two rationals: gcd of numerators over lcm of denominators (positive).
     pub fn gcd(&self, other: &Rational) -> Rational {
         if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &other.0) {
@@ -591,6 +605,20 @@ mod tests {
         assert_eq!(&r(17, 192) + &r(1, 4), r(65, 192));
         assert_eq!(&r(2, 4) * &r(2, 1), Rational::one());
         assert_eq!(r(3, -6), r(-1, 2));
+    }
+
+    #[test]
+    fn exact_square_roots_only_of_squares() {
+        assert_eq!(r(9, 4).sqrt_exact(), Some(r(3, 2)));
+        assert_eq!(Rational::zero().sqrt_exact(), Some(Rational::zero()));
+        assert_eq!(r(25, 1).sqrt_exact(), Some(r(5, 1)));
+        assert_eq!(r(2, 1).sqrt_exact(), None);
+        assert_eq!(r(9, 8).sqrt_exact(), None);
+        assert_eq!(r(-4, 1).sqrt_exact(), None);
+        let big =
+            Rational::from_bigints(BigInt::from(3).pow(80u32), BigInt::from(7).pow(40u32)).unwrap();
+        let root = Rational::from_bigints(BigInt::from(3).pow(40u32), BigInt::from(7).pow(20u32));
+        assert_eq!(big.sqrt_exact(), root);
     }
 
     #[test]

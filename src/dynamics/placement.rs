@@ -20,8 +20,6 @@ use super::kinematics::JointFrame;
 use super::model::{Convention, JointKind, Robot};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::{to_poly, Expr, Poly, Rational};
-use num_bigint::BigInt;
-use num_traits::Signed;
 use thiserror::Error;
 
 /// Where a joint sits in its parent link's frame and what it moves about or along.
@@ -134,14 +132,6 @@ fn written(v: &[Expr; 3]) -> String {
     v.iter().map(Expr::to_string).collect::<Vec<_>>().join(", ")
 }
 
-fn sqrt_exact(k: &BigInt) -> Option<BigInt> {
-    if k.is_negative() {
-        return None;
-    }
-    let r = k.sqrt();
-    (&r * &r == *k).then_some(r)
-}
-
 /// The unit vector along `v`, exactly: `[0, 0, -1]` stays, `[0, 3, 4]` becomes `[0, 3/5, 4/5]`; a
 /// vector whose length is irrational (`[1, 1, 0]`) is refused.
 pub fn normalise_axis(v: &[Expr; 3]) -> Result<[Expr; 3], AxisError> {
@@ -156,14 +146,12 @@ pub fn normalise_axis(v: &[Expr; 3]) -> Result<[Expr; 3], AxisError> {
     if norm2.is_zero() {
         return Err(AxisError::Zero(written(v)));
     }
-    let (n, d) = (sqrt_exact(&norm2.numer()), sqrt_exact(&norm2.denom()));
-    let (Some(n), Some(d)) = (n, d) else {
+    let Some(norm) = norm2.sqrt_exact() else {
         return Err(AxisError::Irrational {
             written: written(v),
             norm2: norm2.to_string(),
         });
     };
-    let norm = Rational::from_bigints(n, d).expect("a positive denominator");
     let inv = norm.recip().expect("a non-zero length");
     Ok(std::array::from_fn(|k| Expr::num(&r[k] * &inv)))
 }

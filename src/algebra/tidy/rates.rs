@@ -72,18 +72,6 @@ fn div(a: &Rational, b: &Rational) -> Rational {
     a * &b.recip().expect("a coefficient of a term is non-zero")
 }
 
-/// The exact square root of a rational, if it has one (`9/4` → `3/2`; negative → none).
-fn sqrt_exact(r: &Rational) -> Option<Rational> {
-    if r.is_negative() {
-        return None;
-    }
-    let root = |n: num_bigint::BigInt| {
-        let s = num_integer::Roots::sqrt(&n);
-        (&s * &s == n).then_some(s)
-    };
-    Rational::from_bigints(root(r.numer())?, root(r.denom())?)
-}
-
 /// `Σ c_i r_i` (rate monomials `r_i`) as `k (Σ a_i r_i)` with integer `a_i` without a common
 /// divisor and the first `a_i` positive.
 fn linear(terms: &[(Expr, Rational)]) -> (Rational, Expr) {
@@ -118,7 +106,7 @@ fn square(terms: &[(RateMonomial, Rational)]) -> Option<(Rational, Expr)> {
     let mut l: BTreeMap<u32, Rational> = BTreeMap::new();
     for (&i, a) in &diag {
         let ratio = div(a, &k);
-        let root = sqrt_exact(&ratio)?;
+        let root = ratio.sqrt_exact()?;
         let root = if i == first {
             root
         } else {
