@@ -843,26 +843,46 @@ impl Poly {
         }
         let index = |id: AtomId| atoms.binary_search(&id).expect("collected above");
         let mut constant = Rational::zero();
-        let mut terms = Vec::with_capacity(self.terms.len());
-        let mut buf: Vec<(u32, usize, i32)> = Vec::new();
+        // Each term as (rank, atom, exponent) by rank: the monomials then sort as the total order
+        // sorts them (factor lists base by base, the higher power first for an equal base, a prefix
+        // first), on these numbers instead of on the expressions.
+        type Ranked = Vec<(u32, usize, i32)>;
+        let mut keyed: Vec<(Ranked, &Rational)> = Vec::with_capacity(self.terms.len());
         for (m, c) in &self.terms {
             if m.0.is_empty() {
                 constant = c.clone();
                 continue;
             }
-            buf.clear();
-            buf.extend(m.0.iter().map(|&(id, e)| {
-                let i = index(id);
-                (rank[i], i, e)
-            }));
-            buf.sort_unstable_by_key(|&(r, _, _)| r);
-            let factors = buf
-                .iter()
-                .map(|&(_, i, e)| (bases[i].clone(), i64::from(e)))
-                .collect();
-            terms.push((Expr::monomial_of_sorted_bases(factors), c.clone()));
+            let mut key: Vec<(u32, usize, i32)> =
+                m.0.iter()
+                    .map(|&(id, e)| {
+                        let i = index(id);
+                        (rank[i], i, e)
+                    })
+                    .collect();
+            key.sort_unstable_by_key(|&(r, _, _)| r);
+            keyed.push((key, c));
         }
-        terms.sort_by(|a, b| a.0.cmp(&b.0));
+        keyed.sort_unstable_by(|(x, _), (y, _)| {
+            let pairs = x.iter().zip(y.iter());
+            for (&(r, _, e), &(s, _, f)) in pairs {
+                let o = r.cmp(&s).then(f.cmp(&e));
+                if o != std::cmp::Ordering::Equal {
+                    return o;
+                }
+            }
+            x.len().cmp(&y.len())
+        });
+        let terms: Vec<(Expr, Rational)> = keyed
+            .into_iter()
+            .map(|(key, c)| {
+                let factors = key
+                    .iter()
+                    .map(|&(_, i, e)| (bases[i].clone(), i64::from(e)))
+                    .collect();
+                (Expr::monomial_of_sorted_bases(factors), c.clone())
+            })
+            .collect();
         Some(Expr::sum_of_sorted_monomials(constant, terms))
     }
 

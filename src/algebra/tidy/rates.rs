@@ -44,21 +44,38 @@ struct Split {
     coeff: Rational,
     rates: RateMonomial,
     rest: Expr,
+    /// The whole term's monomial (rates and rest), as the sum holds it.
+    monomial: Expr,
 }
 
-fn split(t: &Expr, coeff: Rational) -> Split {
+/// Whether a base is plain (a symbol, a function or π): a canonical product of such bases, less some
+/// of them, is a product as it stands ([`Expr::monomial_of_sorted_bases`]).
+fn plain(base: &Expr) -> bool {
+    matches!(base.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi)
+}
+
+fn split(t: Expr, coeff: Rational) -> Split {
     let mut rates = Vec::new();
     let mut rest = Vec::new();
     for (b, k) in t.factors() {
         match rate(&b) {
             Some(r) if k > 0 => rates.push((r, k)),
-            _ => rest.push(b.pow(k).expect("bases of a canonical product are non-zero")),
+            _ => rest.push((b, k)),
         }
     }
+    let rest = if rest.iter().all(|(b, _)| plain(b)) {
+        Expr::monomial_of_sorted_bases(rest)
+    } else {
+        Expr::product(
+            rest.into_iter()
+                .map(|(b, k)| b.pow(k).expect("bases of a canonical product are non-zero")),
+        )
+    };
     Split {
         coeff,
         rates,
-        rest: Expr::product(rest),
+        rest,
+        monomial: t,
     }
 }
 
@@ -155,7 +172,7 @@ pub fn group_rates(e: &Expr) -> Expr {
         return e.clone();
     }
     let terms = e.terms();
-    let split: Vec<Split> = terms.into_iter().map(|(t, c)| split(&t, c)).collect();
+    let split: Vec<Split> = terms.into_iter().map(|(t, c)| split(t, c)).collect();
     if split.iter().all(|s| s.rates.is_empty()) {
         return e.clone();
     }
@@ -168,21 +185,9 @@ pub fn group_rates(e: &Expr) -> Expr {
     let mut changed = false;
     let mut out: Vec<Expr> = Vec::new();
     for ((rest, degree), members) in groups {
-        let as_they_stand =
-            |members: &[Split]| -> Vec<Expr> {
-                members
-                    .iter()
-                    .map(|s| {
-                        Expr::product(
-                            std::iter::once(Expr::num(s.coeff.clone()))
-                                .chain(std::iter::once(rest.clone()))
-                                .chain(s.rates.iter().map(|&(r, k)| {
-                                    rate_expr(r).pow(k).expect("a rate is non-zero")
-                                })),
-                        )
-                    })
-                    .collect()
-            };
+        let as_they_stand = |members: &[Split]| -> Vec<Expr> {
+            members.iter().map(|s| s.monomial.scale(&s.coeff)).collect()
+        };
         if members.len() < 2 || degree == 0 {
             out.extend(as_they_stand(&members));
             continue;
@@ -259,8 +264,8 @@ fn has_rate(e: &Expr) -> bool {
 fn collect_parameters(terms: Vec<Expr>) -> (Vec<Expr>, bool) {
     let power = |(b, k): (Expr, i64)| b.pow(k).expect("bases of a canonical product are non-zero");
     let mut kept = Vec::with_capacity(terms.len());
-    // The rest (with a rate) -> each term's coefficient times its parameters.
-    let mut groups: BTreeMap<Expr, Vec<Expr>> = BTreeMap::new();
+    // The rest (with a rate) -> each term's coefficient times its parameters, and the term.
+    let mut groups: BTreeMap<Expr, Vec<(Expr, Expr)>> = BTreeMap::new();
     for t in terms {
         let (c, m) = t.split_coeff();
         type Factors = Vec<(Expr, i64)>;
@@ -270,24 +275,28 @@ fn collect_parameters(terms: Vec<Expr>) -> (Vec<Expr>, bool) {
                 Kind::Sym(Symbol::Param(_)) | Kind::Sym(Symbol::Coord { order: 0, .. })
             )
         });
-        let rest = Expr::product(others.into_iter().map(power));
-        if !has_rate(&rest) {
+        if !others.iter().any(|(b, _)| has_rate(b)) {
             kept.push(t);
             continue;
         }
-        let part =
-            Expr::product(std::iter::once(Expr::num(c)).chain(params.into_iter().map(power)));
-        groups.entry(rest).or_default().push(part);
+        let rest = if others.iter().all(|(b, _)| plain(b)) {
+            Expr::monomial_of_sorted_bases(others)
+        } else {
+            Expr::product(others.into_iter().map(power))
+        };
+        // Parameters and coordinates are symbols: their product is one as it stands.
+        let part = Expr::monomial_of_sorted_bases(params).scale(&c);
+        groups.entry(rest).or_default().push((part, t));
     }
     let mut collected = false;
-    for (rest, parts) in groups {
-        let sum = if parts.len() == 1 {
-            parts.into_iter().next().expect("one part")
-        } else {
-            collected = true;
-            Expr::product(factor_list(&Expr::sum(parts)))
-        };
-        kept.push(Expr::product([sum, rest]));
+    for (rest, mut parts) in groups {
+        if parts.len() == 1 {
+            kept.push(parts.pop().expect("one part").1);
+            continue;
+        }
+        collected = true;
+        let sum = Expr::sum(parts.into_iter().map(|(part, _)| part));
+        kept.push(Expr::product(factor_list(&sum).into_iter().chain([rest])));
     }
     (kept, collected)
 }
