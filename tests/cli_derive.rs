@@ -289,6 +289,9 @@ fn several_threads_print_what_one_prints() {
             "--format",
             "latex",
         ],
+        // D's entries and the derivatives of the Christoffel symbols one per item, on a robot
+        // placed from a URDF file.
+        &["derive", "examples/panda.urdf"],
     ] {
         let (one, _, code) = symdyn_threads("1", args);
         assert_eq!(code, 0, "{args:?}");

@@ -136,45 +136,72 @@ impl MassMatrix {
                 .map(|t| (tensor_poly(t), local[n - 1].1.clone()));
             (to_poly(&l.mass), jv, rot)
         });
-        let mut d = vec![vec![Poly::zero(); n]; n];
-        for k in 0..n {
-            for j in k..n {
-                let mut parts = Vec::new();
-                for i in 0..n {
-                    let (jk, jj) = (&local[i].0[k], &local[i].0[j]);
-                    if !masses[i].is_zero() && !jk.is_exact_zero() && !jj.is_exact_zero() {
-                        parts.push(masses[i].mul(&jk.dot(jj)));
-                    }
-                    if let Some((local, axes)) = &rotational[i] {
-                        let (wk, wj) = (&axes[k], &axes[j]);
-                        if !wk.is_exact_zero() && !wj.is_exact_zero() {
-                            parts.push(quad(wk, local, wj));
-                        }
-                    }
-                }
-                if let Some((mass, jv, rot)) = &payload {
-                    let (jk, jj) = (&jv[k], &jv[j]);
-                    if !jk.is_exact_zero() && !jj.is_exact_zero() {
-                        parts.push(mass.mul(&jk.dot(jj)));
-                    }
-                    if let Some((local, axes)) = rot {
-                        let (wk, wj) = (&axes[k], &axes[j]);
-                        if !wk.is_exact_zero() && !wj.is_exact_zero() {
-                            parts.push(quad(wk, local, wj));
-                        }
-                    }
-                }
-                if j == k {
-                    // The motor's rotor, reflected through its gear (Spong §7.5): a constant.
-                    let rotor = robot.drive(k + 1).rotor;
-                    if !rotor.is_zero() {
-                        parts.push(to_poly(&rotor));
-                    }
-                }
-                let entry = Poly::sum(&parts);
-                d[j][k] = entry.clone();
-                d[k][j] = entry;
+        let rotors: Vec<Poly> = (1..=n).map(|k| to_poly(&robot.drive(k).rotor)).collect();
+        // d_kj for k ≤ j, one entry per item, on several threads for a large robot (the entries of
+        // the Franka Panda take about 9 ms on one), unless a factor holds a surd or an opaque atom,
+        // whose products may intern new atoms (whose ids would then depend on the schedule).
+        let pairs: Vec<(usize, usize)> = (0..n).flat_map(|k| (k..n).map(move |j| (k, j))).collect();
+        let mut inputs: Vec<&Poly> = masses.iter().chain(&rotors).collect();
+        for (v, w) in &local {
+            inputs.extend(columns(v).chain(columns(w)));
+        }
+        for (t, _) in rotational.iter().flatten() {
+            inputs.extend(tensor(t));
+        }
+        if let Some((mass, jv, rot)) = &payload {
+            inputs.push(mass);
+            inputs.extend(columns(jv));
+            if let Some((t, _)) = rot {
+                inputs.extend(tensor(t));
             }
+        }
+        let interns = inputs.into_iter().any(may_intern);
+        let weight = |&(k, j): &(usize, usize)| -> usize {
+            if interns {
+                return 0;
+            }
+            let size = |v: &Vec3<Poly>| v.0.iter().map(Poly::len).sum::<usize>();
+            (0..n)
+                .map(|i| size(&local[i].0[k]) * size(&local[i].0[j]))
+                .sum::<usize>()
+                * PRODUCT_WORK
+        };
+        let entries = parallel::map(&pairs, weight, WORTH_SHARING, |&(k, j)| {
+            let mut parts = Vec::new();
+            for i in 0..n {
+                let (jk, jj) = (&local[i].0[k], &local[i].0[j]);
+                if !masses[i].is_zero() && !jk.is_exact_zero() && !jj.is_exact_zero() {
+                    parts.push(masses[i].mul(&jk.dot(jj)));
+                }
+                if let Some((local, axes)) = &rotational[i] {
+                    let (wk, wj) = (&axes[k], &axes[j]);
+                    if !wk.is_exact_zero() && !wj.is_exact_zero() {
+                        parts.push(quad(wk, local, wj));
+                    }
+                }
+            }
+            if let Some((mass, jv, rot)) = &payload {
+                let (jk, jj) = (&jv[k], &jv[j]);
+                if !jk.is_exact_zero() && !jj.is_exact_zero() {
+                    parts.push(mass.mul(&jk.dot(jj)));
+                }
+                if let Some((local, axes)) = rot {
+                    let (wk, wj) = (&axes[k], &axes[j]);
+                    if !wk.is_exact_zero() && !wj.is_exact_zero() {
+                        parts.push(quad(wk, local, wj));
+                    }
+                }
+            }
+            if j == k && !rotors[k].is_zero() {
+                // The motor's rotor, reflected through its gear (Spong §7.5): a constant.
+                parts.push(rotors[k].clone());
+            }
+            Poly::sum(&parts)
+        });
+        let mut d = vec![vec![Poly::zero(); n]; n];
+        for ((k, j), entry) in pairs.into_iter().zip(entries) {
+            d[j][k] = entry.clone();
+            d[k][j] = entry;
         }
         let constant = d.iter().flatten().all(is_constant);
         MassMatrix {
@@ -182,6 +209,25 @@ impl MassMatrix {
             constant,
         }
     }
+}
+
+/// The entries of the columns of a Jacobian.
+fn columns(c: &Columns) -> impl Iterator<Item = &Poly> {
+    c.iter().flat_map(|v| v.0.iter())
+}
+
+/// The entries of a tensor.
+fn tensor(t: &Mat3<Poly>) -> impl Iterator<Item = &Poly> {
+    t.0.iter().flatten()
+}
+
+/// Whether a product with `p` may intern a new atom: `p` holds a surd (`√2 √3` is `√6`) or an
+/// opaque atom.
+fn may_intern(p: &Poly) -> bool {
+    p.terms()
+        .iter()
+        .flat_map(|(m, _)| m.factors())
+        .any(|&(id, _)| matches!(atom::class(id), Class::Other | Class::Sqrt))
 }
 
 /// The second stage: `c_ijk = ½ (∂d_kj/∂q_i + ∂d_ki/∂q_j − ∂d_ij/∂q_k)`, all zero (and not computed)
@@ -194,9 +240,8 @@ pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
     }
     let qs: Vec<Symbol> = (1..=n as u32).map(Symbol::q).collect();
     // ∂D/∂q_i, for the upper triangle only (D is symmetric, so is each ∂D/∂q_i):
-    // `dd[i][a][b - a]` is ∂d_ab/∂q_i for a ≤ b. One q_i per item, on several threads for a large
-    // D, unless D holds an opaque atom (`Class::Other`), whose derivative may intern new atoms.
-    let upper: usize = d.iter().enumerate().map(|(a, row)| terms(&row[a..])).sum();
+    // `dd[i][a][b - a]` is ∂d_ab/∂q_i for a ≤ b. On several threads for a large D, unless D holds
+    // an opaque atom (`Class::Other`), whose derivative may intern new atoms.
     let opaque = d
         .iter()
         .enumerate()
@@ -207,18 +252,33 @@ pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
                 .flat_map(|(m, _)| m.factors())
                 .any(|&(id, _)| atom::class(id) == Class::Other)
         });
-    let weight = if opaque { 0 } else { DIFF_WORK * upper };
-    let dd: Vec<Vec<Vec<Poly>>> = parallel::map(
-        &qs,
-        |_| weight,
-        WORTH_SHARING,
-        |q| {
-            d.iter()
-                .enumerate()
-                .map(|(a, row)| row[a..].iter().map(|e| poly_diff(e, q)).collect())
+    // One (q_i, d_ab) per item, heaviest first: an entry's cost depends on its size and on how much
+    // of it holds q_i (none of D holds q_1), so whole rows of derivatives would leave a thread idle.
+    let items: Vec<(usize, usize, usize)> = (0..n)
+        .flat_map(|i| (0..n).flat_map(move |a| (a..n).map(move |b| (i, a, b))))
+        .collect();
+    let weight = |&(_, a, b): &(usize, usize, usize)| {
+        if opaque {
+            0
+        } else {
+            DIFF_WORK * d[a][b].len()
+        }
+    };
+    let mut derivatives = parallel::map(&items, weight, WORTH_SHARING, |&(i, a, b)| {
+        poly_diff(&d[a][b], &qs[i])
+    })
+    .into_iter();
+    let dd: Vec<Vec<Vec<Poly>>> = (0..n)
+        .map(|_| {
+            (0..n)
+                .map(|a| {
+                    (a..n)
+                        .map(|_| derivatives.next().expect("one per item"))
+                        .collect()
+                })
                 .collect()
-        },
-    );
+        })
+        .collect();
     christoffel_from(&dd, |_, _, _, c| c)
 }
 
@@ -226,6 +286,8 @@ pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
 /// on the all-symbolic PUMA 560: a derivative about 150 ns a term of `D`, a sum or a product by
 /// `q̇`, `q̈` about 100 ns a term).
 const DIFF_WORK: usize = 50;
+/// The work of an entry of `D` per product of terms of two Jacobian columns.
+const PRODUCT_WORK: usize = 10;
 const SUM_WORK: usize = 30;
 
 /// The terms of some polynomials.
