@@ -163,8 +163,39 @@ fn function(f: Func, arg: &Expr, exp: i64, guarded: bool) -> String {
     }
 }
 
+thread_local! {
+    /// The symbols and parenthesised sums [`atom`] has printed on this thread: a sheet names the
+    /// same parameters and rates, and repeats the same groups (`(\dot{q}_{1}+\dot{q}_{2})`), in
+    /// most of its terms. A pure function's results, as [`FUNCTIONS`].
+    static ATOMS: RefCell<FxHashMap<Expr, String>> = RefCell::default();
+}
+
 /// A base that takes a superscript as it is: a symbol, `\pi`, `\sqrt{k}`, or a parenthesised sum.
 fn atom(e: &Expr) -> String {
+    if !matches!(e.kind(), Kind::Sym(_) | Kind::Add(..)) {
+        return atom_text(e);
+    }
+    if let Some(s) = ATOMS.with(|m| m.borrow().get(e).cloned()) {
+        return s;
+    }
+    let s = atom_text(e);
+    if s.len() <= ATOM_MEMO_BYTES {
+        ATOMS.with(|m| {
+            let mut m = m.borrow_mut();
+            if m.len() >= FACTOR_MEMO {
+                m.clear();
+            }
+            m.insert(e.clone(), s.clone());
+        });
+    }
+    s
+}
+
+/// The longest text [`atom`] remembers: the memory of the memo stays within a few megabytes.
+const ATOM_MEMO_BYTES: usize = 512;
+
+/// [`atom`], printed.
+fn atom_text(e: &Expr) -> String {
     match e.kind() {
         Kind::Sym(s) => names::latex(s),
         Kind::Pi => "\\pi".to_string(),
@@ -173,5 +204,42 @@ fn atom(e: &Expr) -> String {
         Kind::Add(..) => format!("\\left({}\\right)", sum(&Piece::of_sum(e), true)),
         // Canonical products never have numbers or products as bases.
         Kind::Num(_) | Kind::Mul(..) => format!("\\left({}\\right)", expr(e)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The memos of [`atom`] and [`factor`] only save work: the text printed with them full is the
+    /// text printed with them empty, and a sum too long to remember is printed all the same.
+    #[test]
+    fn remembered_text_is_the_printed_text() {
+        let long: String = (1..=60)
+            .map(|i| format!("a{i}*qd{} + ", i % 7 + 1))
+            .collect();
+        let inputs = [
+            "m2*(l1^2 + lc2^2)*cos(q2) + I2",
+            "(qd1 + qd2)^2*lc2*sin(q1 + q2) - (qdd1 + qdd2)*lc2*cos(q1 + q2)",
+            "theta1*(alpha + beta)/(l1 + l2)",
+            &format!("x*({long}1)"),
+        ];
+        let exprs: Vec<Expr> = inputs
+            .iter()
+            .map(|t| crate::parse::parse_expr(t).unwrap())
+            .collect();
+        let cold = |e: &Expr| {
+            ATOMS.with(|m| m.borrow_mut().clear());
+            FUNCTIONS.with(|m| m.borrow_mut().clear());
+            expr(e)
+        };
+        let first: Vec<String> = exprs.iter().map(cold).collect();
+        for _ in 0..2 {
+            for (e, want) in exprs.iter().zip(&first) {
+                assert_eq!(&expr(e), want);
+            }
+        }
+        assert!(ATOMS.with(|m| m.borrow().len()) > 0, "the memo is used");
+        assert!(first[3].len() > ATOM_MEMO_BYTES);
     }
 }
