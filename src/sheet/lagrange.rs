@@ -4,14 +4,34 @@
 use super::layout::Layout;
 use super::{sym, Scope};
 use crate::algebra::tidy::Grouping;
-use crate::algebra::Poly;
+use crate::algebra::{Expr, Poly};
 use crate::dynamics::kinematics::columns_to_poly_rows;
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::Derivation;
 use crate::report::lhs_terms;
+use std::collections::HashMap;
+
+/// The display terms of the equations' left sides, by polynomial: `τ` by Newton–Euler, in either
+/// frame, is `τ` by Euler–Lagrange term for term, so each side is put in the house style once.
+#[derive(Default)]
+pub(super) struct Sides(HashMap<Poly, Vec<Expr>>);
+
+impl Sides {
+    /// The display terms of `tau_k` ([`lhs_terms`]).
+    fn terms(&mut self, tau_k: &Poly) -> &[Expr] {
+        self.0
+            .entry(tau_k.clone())
+            .or_insert_with(|| lhs_terms(tau_k))
+    }
+}
 
 /// The section.
-pub(super) fn section(der: &Derivation, lay: &mut Layout, scope: Scope) -> String {
+pub(super) fn section(
+    der: &Derivation,
+    lay: &mut Layout,
+    scope: Scope,
+    sides: &mut Sides,
+) -> String {
     let mut out = String::from("\\section*{Euler--Lagrange formulation}\n");
     if scope == Scope::MassAndGravity {
         out.push_str(&mass_matrix(der, lay));
@@ -86,6 +106,7 @@ pub(super) fn section(der: &Derivation, lay: &mut Layout, scope: Scope) -> Strin
         der,
         &el.tau,
         lay,
+        sides,
         "Hence the equations of motion $D(q) \\ddot{q} + C(q, \\dot{q}) \\dot{q} + g(q) = \\tau$ are\n",
     ));
     out
@@ -115,10 +136,16 @@ fn gravity(der: &Derivation, lay: &mut Layout) -> String {
 }
 
 /// `intro`, then one equation of motion per joint in house style, `… = u_k`.
-pub(super) fn equations(der: &Derivation, tau: &[Poly], lay: &mut Layout, intro: &str) -> String {
+pub(super) fn equations(
+    der: &Derivation,
+    tau: &[Poly],
+    lay: &mut Layout,
+    sides: &mut Sides,
+    intro: &str,
+) -> String {
     let mut out = String::from(intro);
     for (t, u) in tau.iter().zip(&der.robot().inputs) {
-        out.push_str(&lay.terms(None, &lhs_terms(t), Some(&sym(u))));
+        out.push_str(&lay.terms(None, sides.terms(t), Some(&sym(u))));
     }
     out
 }

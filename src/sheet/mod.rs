@@ -133,6 +133,8 @@ fn document(
     proofs: impl FnOnce() -> Option<String>,
 ) -> String {
     let mut lay = Layout::new();
+    // The equations' sides, tidied once for every section that prints them.
+    let mut sides = lagrange::Sides::default();
     let compact = compact_mode(der);
     let mut out = String::from(PREAMBLE);
     out.push_str(&format!(
@@ -143,7 +145,9 @@ fn document(
     out.push_str(&scene::section(der, &mut lay, opts.scope == Scope::Brief));
     if opts.lagrange() {
         out.push_str(&match (compact, opts.scope) {
-            (_, Scope::MassAndGravity) | (false, _) => lagrange::section(der, &mut lay, opts.scope),
+            (_, Scope::MassAndGravity) | (false, _) => {
+                lagrange::section(der, &mut lay, opts.scope, &mut sides)
+            }
             (true, scope) => lagrange_compact::section(der, &mut lay, scope == Scope::Brief),
         });
     }
@@ -157,7 +161,7 @@ fn document(
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, &mut lay)
         } else {
-            newton_euler::section(der, frame, &mut lay, &mut tidied)
+            newton_euler::section(der, frame, &mut lay, &mut tidied, &mut sides)
         });
     }
     match proofs() {

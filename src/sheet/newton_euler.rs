@@ -133,6 +133,7 @@ pub(super) fn section(
     frame: Frame,
     lay: &mut Layout,
     tidied: &mut Tidied,
+    sides: &mut super::lagrange::Sides,
 ) -> String {
     let robot = der.robot();
     let n = robot.dof();
@@ -299,6 +300,7 @@ pub(super) fn section(
         der,
         &ne.tau,
         lay,
+        sides,
         "Therefore the equations of motion are\n",
     ));
     out
