@@ -67,14 +67,32 @@ pub fn tidy(e: &Expr) -> Expr {
 /// [`tidy`] with another [`Grouping`]: [`Grouping::Leading`] is the habit for inertia entries,
 /// `m1 lc1² + m2 (l1² + lc2² + 2 l1 lc2 cos q2) + I1 + I2`.
 pub fn tidy_by(e: &Expr, grouping: Grouping) -> Expr {
+    if is_atom(e) {
+        return e.clone();
+    }
     group(&contract_trig(e), grouping)
+}
+
+/// A number, a symbol or π: its own display form (the transforms and tensors of a scene are full
+/// of them).
+fn is_atom(e: &Expr) -> bool {
+    matches!(
+        e.kind(),
+        crate::algebra::Kind::Num(_) | crate::algebra::Kind::Sym(_) | crate::algebra::Kind::Pi
+    )
 }
 
 /// [`tidy_by`] of a polynomial, which is its own normal form: the conversion from an expression that
 /// [`tidy_by`] starts with (the larger part of its cost on the intermediate vectors of a sheet) is
 /// skipped. The same result as `tidy_by(&p.to_expr(), grouping)`.
 pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
-    group(&contract::contract_normal(&p.to_expr()), grouping)
+    let e = p.to_expr();
+    // A single term is its own display form: no rule has two terms to merge, and the grouping
+    // gives back the canonical product it started from.
+    if p.len() <= 1 {
+        return e;
+    }
+    group(&contract::contract_normal(&e), grouping)
 }
 
 /// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial
@@ -111,6 +129,32 @@ mod tests {
         assert_eq!(got, expected, "tidy({input:?})");
         assert!(equal(&input, &got), "value changed: {input:?} -> {got:?}");
         assert_eq!(tidy(&got), got, "tidy is not idempotent on {input:?}");
+    }
+
+    /// The shortcuts (an atom, a single term) give what the rules give.
+    #[test]
+    fn atoms_and_single_terms_are_their_own_display_form() {
+        for text in [
+            "0",
+            "-3/4",
+            "m1",
+            "qdd2",
+            "pi",
+            "2*m2*l1*lc2*cos(q2)",
+            "-m3*g*sin(q1)*cos(q2)^2",
+            "sqrt(2)*a*qd1^2/2",
+            "x^-1*y",
+        ] {
+            let e = crate::parse::parse_expr(text).unwrap();
+            let p = crate::algebra::to_poly(&e);
+            for g in [Grouping::Trig, Grouping::Leading] {
+                let full = group(&contract::contract_normal(&p.to_expr()), g);
+                assert_eq!(tidy_poly_by(&p, g), full, "{text}");
+                if is_atom(&e) {
+                    assert_eq!(tidy_by(&e, g), group(&contract_trig(&e), g), "{text}");
+                }
+            }
+        }
     }
 
     #[test]
