@@ -68,15 +68,19 @@ fn of_symbols(a: &Expr) -> bool {
 /// The factors of a term of a sum (coefficient 1) whose bases are all plain (symbols, π, surds,
 /// functions of symbols), which [`factor_common`] leaves as they are; `None` otherwise.
 fn plain_factors(t: &Expr) -> Option<Vec<(Expr, i64)>> {
-    let plain = |b: &Expr| match b.kind() {
-        Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => true,
-        Kind::Fun(_, a) => of_symbols(a),
-        Kind::Num(_) | Kind::Add(..) | Kind::Mul(..) => false,
-    };
     match t.kind() {
         Kind::Mul(c, fs) if c.is_one() && fs.iter().all(|(b, _)| plain(b)) => Some(fs.clone()),
         _ if plain(t) => Some(vec![(t.clone(), 1)]),
         _ => None,
+    }
+}
+
+/// A base [`factor_common`] leaves as it is: a symbol, π, a surd, a function of symbols.
+fn plain(b: &Expr) -> bool {
+    match b.kind() {
+        Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => true,
+        Kind::Fun(_, a) => of_symbols(a),
+        Kind::Num(_) | Kind::Add(..) | Kind::Mul(..) => false,
     }
 }
 
@@ -223,19 +227,8 @@ fn nothing_common(e: &Expr) -> Option<Vec<Expr>> {
         return None;
     }
     let (first, _) = ts.first()?;
-    let is_plain = |b: &Expr| match b.kind() {
-        Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => true,
-        Kind::Fun(_, a) => of_symbols(a),
-        Kind::Num(_) | Kind::Add(..) | Kind::Mul(..) => false,
-    };
     let bases = |t: &Expr| -> Option<Vec<Expr>> {
-        match t.kind() {
-            Kind::Mul(c, fs) if c.is_one() && fs.iter().all(|(b, _)| is_plain(b)) => {
-                Some(fs.iter().map(|(b, _)| b.clone()).collect())
-            }
-            _ if is_plain(t) => Some(vec![t.clone()]),
-            _ => None,
-        }
+        Some(plain_factors(t)?.into_iter().map(|(b, _)| b).collect())
     };
     // A constant term has no base: only the content can be common.
     let mut common = if constant.is_zero() {
