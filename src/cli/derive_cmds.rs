@@ -137,19 +137,18 @@ pub fn derive(
         MethodArg::Lagrange => Method::Lagrange,
         MethodArg::NewtonEuler => Method::NewtonEuler(frame),
     };
-    let out = match format {
-        Format::Text => {
-            report::equations(&der, method, if ascii { Style::Ascii } else { Style::Text })
-        }
-        Format::Latex => report::equations(&der, method, Style::Latex),
-        Format::Json => {
-            // Written to stdout here, a piece at a time; nothing is left for the caller to print.
-            super::output::stdout_with(|out| report::write_json(&der, method, out))?;
-            String::new()
-        }
+    // Written to stdout here, a piece at a time; nothing is left for the caller to print.
+    let style = match format {
+        Format::Text if ascii => Style::Ascii,
+        Format::Text => Style::Text,
+        _ => Style::Latex,
     };
+    super::output::stdout_with(|out| match format {
+        Format::Json => report::write_json(&der, method, out),
+        _ => report::write_equations(&der, method, style, out),
+    })?;
     leave(der);
-    Ok(out)
+    Ok(String::new())
 }
 
 /// `symdyn derive --compact`: the compact program of the chosen method (Euler–Lagrange: `D`, the

@@ -221,7 +221,7 @@ pub fn side_text(p: &Poly, style: Style) -> Option<String> {
 /// A term goes to the first stage whose key atoms it has: its accelerations (stage 0), else its
 /// rates (stage 1), else its trig factors (stage 2, possibly none). Terms of one key share a display
 /// term, keys in order within a stage ([`shown`] lays out each).
-fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sink) {
+pub(crate) fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sink) {
     let roles: Vec<Role> = (0..ranks.len() as u32)
         .map(|r| role(ranks.atom(r)))
         .collect();
@@ -380,7 +380,7 @@ fn grouped(sink: &mut impl Sink, r: &mut Renderer, roles: &[Role], terms: &[Coef
 
 /// Where the display terms of a side go, in order: products, and groups `before (…) after` opened
 /// and closed around their terms (`before`, `after`: factors, possibly none).
-trait Sink {
+pub(crate) trait Sink {
     /// A product term `c · Π factors` (factors sorted by rank).
     fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]);
     /// Opens a group after its factors `before`.

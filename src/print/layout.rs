@@ -18,6 +18,8 @@ use std::collections::HashMap;
 use std::hash::Hasher;
 use std::sync::Arc;
 
+mod measured;
+
 /// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80): the
 /// width every line of a layout stays within (a single factor wider than a line aside).
 pub const LINE_WIDTH: usize = 66;
@@ -461,21 +463,43 @@ impl PreparedEquation {
 /// The lead of a row that continues a sum.
 const CONTINUED: &str = "  &\\quad ";
 
-/// The rows of an `align*` environment being written, separated by `\\`.
-struct Rows {
+/// The rows of an `align*` environment being written, separated by `\\`: into `out`, which is
+/// handed to `sink` (when there is one) a row at a time once it holds [`SPILL`] bytes, so the
+/// megabytes of a large robot's equations are never held, or paged in, at once.
+struct Rows<'s> {
     out: String,
     /// Whether a row has been started.
     any: bool,
+    /// Where the text goes as it is written, or `None` to keep it all in `out`.
+    sink: Option<&'s mut dyn std::io::Write>,
+    /// The first error of writing to `sink` (nothing more is written after it).
+    error: Option<std::io::Error>,
 }
 
-impl Rows {
+/// The bytes of text [`Rows`] holds before handing them to its sink.
+const SPILL: usize = 1 << 16;
+
+impl Rows<'_> {
     /// Starts a row with `lead`.
     fn start(&mut self, lead: &str) {
         if self.any {
             self.out.push_str(" \\\\\n");
         }
         self.any = true;
+        if self.out.len() >= SPILL {
+            self.spill();
+        }
         self.out.push_str(lead);
+    }
+
+    /// Hands the text so far to the sink, if there is one.
+    fn spill(&mut self) {
+        if let Some(sink) = self.sink.as_mut() {
+            if self.error.is_none() {
+                self.error = sink.write_all(self.out.as_bytes()).err();
+            }
+            self.out.clear();
+        }
     }
 }
 
@@ -605,7 +629,33 @@ impl Layout {
         let mut rows = Rows {
             out: String::with_capacity(bytes + bytes / 8 + 64),
             any: false,
+            sink: None,
+            error: None,
         };
+        self.fill(&mut rows, equations);
+        rows.out
+    }
+
+    /// [`Layout::equations_prepared`] written to `sink` a few rows at a time (what `symdyn derive
+    /// --format latex` prints): the text is never held whole.
+    pub fn write_equations_prepared(
+        &mut self,
+        equations: Vec<PreparedEquation>,
+        sink: &mut dyn std::io::Write,
+    ) -> std::io::Result<()> {
+        let mut rows = Rows {
+            out: String::with_capacity(2 * SPILL),
+            any: false,
+            sink: Some(sink),
+            error: None,
+        };
+        self.fill(&mut rows, equations);
+        rows.spill();
+        rows.error.map_or(Ok(()), Err)
+    }
+
+    /// The `align*` environment of `equations`, written into `rows`.
+    fn fill(&mut self, rows: &mut Rows, equations: Vec<PreparedEquation>) {
         rows.out.push_str("\\begin{align*}\n");
         // Every equation on one line?
         if equations.iter().all(|e| e.line.is_some()) {
@@ -619,7 +669,7 @@ impl Layout {
             let mut later: Vec<(String, Left)> = Vec::new();
             for e in equations {
                 let end = format!(" = {}", e.rhs);
-                self.left_rows(&mut rows, e.left, "  & ", &end, &mut later);
+                self.left_rows(rows, e.left, "  & ", &end, &mut later);
             }
             let mut first = true;
             while !later.is_empty() {
@@ -630,12 +680,11 @@ impl Layout {
                     } else {
                         format!("  & {name} = ")
                     };
-                    self.left_rows(&mut rows, side, &lead, "", &mut later);
+                    self.left_rows(rows, side, &lead, "", &mut later);
                 }
             }
         }
         rows.out.push_str("\n\\end{align*}\n");
-        rows.out
     }
 
     /// The rows of one left-aligned sum ending with `end`, each at most [`LINE_WIDTH`] wide: the
@@ -1068,6 +1117,78 @@ mod tests {
         Shown {
             negative,
             body: Body::Product(text.to_string()),
+        }
+    }
+
+    /// A sink that keeps what is written and counts the writes.
+    #[derive(Default)]
+    struct Counted {
+        bytes: Vec<u8>,
+        writes: usize,
+    }
+
+    impl std::io::Write for Counted {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.writes += 1;
+            self.bytes.extend_from_slice(buf);
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn equations_written_a_few_rows_at_a_time_are_the_text() {
+        // Several equations of long rows and wide groups, hundreds of kilobytes in all, so the text is
+        // handed over in several pieces; and a small one, in one piece.
+        let big = |k: usize| -> (Side, String) {
+            let mut terms: Vec<Shown> = (1..=2000)
+                .map(|j| {
+                    product(
+                        j % 3 == 0,
+                        &format!("m_{{{j}}} a_{{{k}}} \\ddot{{q}}_{{1}}"),
+                    )
+                })
+                .collect();
+            terms.push(Shown {
+                negative: k.is_multiple_of(2),
+                body: Body::Group {
+                    before: format!("g_{{{k}}}"),
+                    inner: (1..=500)
+                        .map(|j| product(j % 2 == 0, &format!("b_{{{j}}} c_{{{k}}}")))
+                        .collect(),
+                    after: "\\dot{q}_{2}".to_string(),
+                    style: Style::Latex,
+                },
+            });
+            (Side::Shown(terms), format!("u_{{{k}}}"))
+        };
+        let small = vec![(
+            Side::Shown(vec![product(false, "d_{2}")]),
+            "u_{1}".to_string(),
+        )];
+        for (equations, pieces) in [((1..=6).map(big).collect(), 2), (small, 1)] {
+            let prepare = |eqs: &Vec<(Side, String)>| -> Vec<PreparedEquation> {
+                eqs.iter()
+                    .map(|(s, r)| PreparedEquation::new(s.clone(), r.clone()))
+                    .collect()
+            };
+            let text = Layout::new().equations_prepared(prepare(&equations));
+            let mut sink = Counted::default();
+            Layout::new()
+                .write_equations_prepared(prepare(&equations), &mut sink)
+                .expect("written");
+            assert_eq!(String::from_utf8(sink.bytes).expect("UTF-8"), text);
+            assert!(
+                sink.writes >= pieces && (pieces > 1 || sink.writes == 1),
+                "{} bytes in {} writes",
+                text.len(),
+                sink.writes
+            );
+            if pieces > 1 {
+                assert!(text.len() > 3 * SPILL, "{} bytes", text.len());
+            }
         }
     }
 

@@ -197,23 +197,24 @@ fn sort_terms(terms: &mut [(usize, usize, &Rational)], buf: &[(u32, i32)]) {
 pub struct Renderer<'a> {
     ranks: &'a Ranks,
     style: Style,
-    /// Per rank, `(exponent, guarded)` → the factor's text (a rank has few distinct powers).
-    cache: Vec<Vec<(i32, bool, Box<str>)>>,
+    /// The text of every factor rendered so far, one after another.
+    texts: String,
+    /// `(rank, exponent, guarded)` → the range of its text in `texts` (empty: not rendered yet), for
+    /// exponents `1..=DENSE_POWERS`, the powers of almost every factor.
+    dense: Vec<(u32, u32)>,
+    /// The other factors rendered so far, and their ranges.
+    sparse: Vec<(FactorKey, (u32, u32))>,
 }
 
+/// A factor to render: its rank, its exponent, and whether it is guarded.
+type FactorKey = (u32, i32, bool);
+
+/// The powers `1..=DENSE_POWERS` of a rank have a slot each in [`Renderer`]'s table.
+const DENSE_POWERS: i32 = 4;
+
 /// Appends the decimal digits of `n`.
-fn push_u64(out: &mut String, mut n: u64) {
-    let mut buf = [0u8; 20];
-    let mut i = buf.len();
-    loop {
-        i -= 1;
-        buf[i] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    out.push_str(std::str::from_utf8(&buf[i..]).expect("ASCII digits"));
+fn push_u64(out: &mut String, n: u64) {
+    out.push_str(itoa::Buffer::new().format(n));
 }
 
 impl<'a> Renderer<'a> {
@@ -222,7 +223,9 @@ impl<'a> Renderer<'a> {
         Renderer {
             ranks,
             style,
-            cache: vec![Vec::new(); ranks.atoms.len()],
+            texts: String::new(),
+            dense: vec![(0, 0); ranks.atoms.len() * 2 * DENSE_POWERS as usize],
+            sparse: Vec::new(),
         }
     }
 
@@ -231,23 +234,42 @@ impl<'a> Renderer<'a> {
         self.ranks
     }
 
+    /// The text of `base^exp` (`guarded`: followed by a factor that is not a sine or cosine, which
+    /// LaTeX separates from a function's argument), rendered once per renderer.
     fn factor(&mut self, rank: u32, exp: i32, guarded: bool) -> &str {
-        let style = self.style;
-        let guarded = guarded && style == Style::Latex;
-        let slot = &mut self.cache[rank as usize];
-        let at = match slot.iter().position(|&(e, g, _)| e == exp && g == guarded) {
-            Some(i) => i,
-            None => {
-                let base = self.ranks.base(rank);
-                let text = match style {
-                    Style::Latex => latex::factor(base, exp as i64, guarded),
-                    _ => text::Printer::new(style).factor(base, exp as i64),
-                };
-                slot.push((exp, guarded, text.into_boxed_str()));
-                slot.len() - 1
+        let guarded = guarded && self.style == Style::Latex;
+        let slot = if (1..=DENSE_POWERS).contains(&exp) {
+            let at =
+                (rank as usize * DENSE_POWERS as usize + (exp - 1) as usize) * 2 + guarded as usize;
+            if self.dense[at].1 == 0 {
+                self.dense[at] = self.render(rank, exp, guarded);
+            }
+            self.dense[at]
+        } else {
+            let key = (rank, exp, guarded);
+            match self.sparse.iter().find(|(k, _)| *k == key) {
+                Some(&(_, range)) => range,
+                None => {
+                    let range = self.render(rank, exp, guarded);
+                    self.sparse.push((key, range));
+                    range
+                }
             }
         };
-        &slot[at].2
+        &self.texts[slot.0 as usize..slot.1 as usize]
+    }
+
+    /// Renders `base^exp` at the end of `texts` and returns its range (never empty).
+    fn render(&mut self, rank: u32, exp: i32, guarded: bool) -> (u32, u32) {
+        let base = self.ranks.base(rank);
+        let text = match self.style {
+            Style::Latex => latex::factor(base, exp as i64, guarded),
+            style => text::Printer::new(style).factor(base, exp as i64),
+        };
+        debug_assert!(!text.is_empty(), "a factor prints as something");
+        let start = self.texts.len() as u32;
+        self.texts.push_str(&text);
+        (start, self.texts.len() as u32)
     }
 
     /// The magnitude of `|c| · Π factors` (factors sorted by rank): `2 m2 lc2^2`, `1/2 m1`,

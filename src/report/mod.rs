@@ -90,7 +90,13 @@ pub fn prepared_equations(taus: &[Poly], rhs: &[String]) -> Vec<PreparedEquation
         &items,
         |(t, _)| side_work(t),
         PARALLEL_WORK,
-        |(t, r)| PreparedEquation::new(lhs_side(t), r.to_string()),
+        |(t, r)| {
+            // A large side is measured as it is printed; a small one tidied first.
+            (t.len() > DISPLAY_BUDGET)
+                .then(|| PreparedEquation::from_poly(t, r.to_string()))
+                .flatten()
+                .unwrap_or_else(|| PreparedEquation::new(lhs_side(t), r.to_string()))
+        },
     )
 }
 
@@ -140,6 +146,32 @@ pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
         .zip(rhs)
         .collect();
     equalities(&lines, style)
+}
+
+/// [`equations`] written to `sink` (what `symdyn derive` prints): a large robot's text an equation
+/// at a time, its `align*` environment a few rows at a time, never held whole.
+pub fn write_equations(
+    der: &Derivation,
+    method: Method,
+    style: Style,
+    sink: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    let rhs: Vec<String> = der
+        .robot()
+        .inputs
+        .iter()
+        .map(|u| print::to_string(&Expr::sym(Symbol::new(u)), style))
+        .collect();
+    if style == Style::Latex {
+        return Layout::new()
+            .write_equations_prepared(prepared_equations(tau(der, method), &rhs), sink);
+    }
+    for (l, r) in lhs_strings(tau(der, method), style).iter().zip(&rhs) {
+        for piece in [l.as_str(), " = ", r.as_str(), "\n"] {
+            sink.write_all(piece.as_bytes())?;
+        }
+    }
+    Ok(())
 }
 
 /// `left = right` lines: one per line in text and ASCII, a LaTeX `align*` aligned at `=`.
