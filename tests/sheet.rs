@@ -162,20 +162,31 @@ fn every_example_sheet_compiles_on_the_page() {
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("examples"))
         .expect("examples/")
         .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "scene"))
+        .filter(|p| p.extension().is_some_and(|e| e == "scene" || e == "urdf"))
         .collect();
     scenes.sort();
-    assert!(scenes.len() >= 7, "{scenes:?}");
+    assert!(scenes.len() >= 9, "{scenes:?}");
     let mut problems = Vec::new();
     for path in &scenes {
-        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        // A URDF robot's inputs are named after its joints (`\mathrm{panda\_joint1}`).
+        let name = path
+            .file_name()
+            .unwrap()
+            .to_string_lossy()
+            .replace(".scene", "");
         let source = std::fs::read_to_string(path).expect("read the scene");
         let opts = SheetOptions {
             scope: Scope::Full,
             ..SheetOptions::default()
         };
         let started = std::time::Instant::now();
-        let tex = sheet(&derivation(&source), &opts);
+        let der = if name.ends_with(".urdf") {
+            let scene = symdyn::parse::parse_robot(&source, &Default::default()).expect("parses");
+            Derivation::new(scene.robot).expect("the robot is valid")
+        } else {
+            derivation(&source)
+        };
+        let tex = sheet(&der, &opts);
         let derived = started.elapsed();
         // Named subexpressions are introduced once, where they first appear, then used (issue 12):
         // no name is given twice, and no two names stand for the same sum.

@@ -63,7 +63,7 @@ fn command_width(name: &[u8]) -> usize {
 
 /// The estimated printed width of LaTeX math source: every character one unit (any byte that starts
 /// a character counts as one), binary operators two, layout characters none, and a command as its
-/// name says (`command_width`); a control symbol (`\\`, `\,`, `\{`) is one unit for a brace and
+/// name says (`command_width`); a control symbol (`\\`, `\,`, `\{`, `\_`) is one unit for a brace or an underscore and
 /// none otherwise. One pass: a byte counts as `BYTE_WIDTH` says, a backslash reads the command or
 /// control symbol it starts.
 pub fn width(latex: &str) -> usize {
@@ -88,7 +88,7 @@ pub fn width(latex: &str) -> usize {
         } else {
             // A control symbol: its byte (if any) counts as the symbol, and starts nothing.
             if let Some(&n) = bytes.get(start) {
-                w += usize::from(n == b'{' || n == b'}');
+                w += usize::from(n == b'{' || n == b'}' || n == b'_');
             }
             i = start + 1;
         }
@@ -984,7 +984,7 @@ mod tests {
                 match bytes.get(start) {
                     Some(&n) => {
                         w = w - BYTE_WIDTH[n as usize] as usize
-                            + usize::from(n == b'{' || n == b'}');
+                            + usize::from(n == b'{' || n == b'}' || n == b'_');
                         i = start + 1;
                     }
                     None => i = start,
@@ -1005,7 +1005,7 @@ mod tests {
             parts in proptest::collection::vec(
                 proptest::sample::select(vec![
                     "\\cos", "\\quad", "\\frac", "\\left(", "\\right)", "\\Xi", "\\\\", "\\{",
-                    "\\}", "\\,", "\\", "{", "}", "_", "^", " ", "+", "-", "=", "&", "q", "2",
+                    "\\}", "\\,", "\\_", "\\", "{", "}", "_", "^", " ", "+", "-", "=", "&", "q", "2",
                     "θ", "ä", "m_{1}", "\\dot{q}_{1}",
                 ]),
                 0..40,
@@ -1031,7 +1031,7 @@ mod tests {
                     }
                     if i == start {
                         if let Some(&n) = bytes.get(i) {
-                            w += usize::from(n == b'{' || n == b'}');
+                            w += usize::from(n == b'{' || n == b'}' || n == b'_');
                             i += 1;
                         }
                         continue;
@@ -1074,6 +1074,8 @@ mod tests {
             ("\\sin q_{2} + \\ddot{q}_{1}", 9),
             // A control symbol, then characters of several bytes: one unit each.
             ("\\,θ_{é} - 1", 5),
+            // An identifier: its letters and escaped underscores.
+            ("\\mathrm{panda\\_joint1}", 12),
         ] {
             assert_eq!(width(latex), w, "{latex}");
         }

@@ -23,8 +23,12 @@
 //!    `\varphi_{2}`. `eta` is not found inside `theta`, and `etab` is not Greek (rule 2 applies).
 //!    Capitals without a LaTeX command of their own print as upright Latin letters:
 //!    `Alpha` is `\mathrm{A}`; `omicron` is `o`.
-//! 2. Otherwise the first character is the base: `m2` is `m_{2}`, `lc2` is `l_{c2}`, `g` is `g`.
-//! 3. The rest is the subscript, with one leading `_` dropped and any further `_` written as a comma:
+//! 2. A name whose part before its first `_` is a word of three letters or more is an identifier,
+//!    such as the name of a URDF joint that names its input: it prints upright and whole, its `_`
+//!    escaped: `panda_joint1` is `\mathrm{panda\_joint1}`, `shoulder_pan_joint` is
+//!    `\mathrm{shoulder\_pan\_joint}` (not `p_{anda,joint1}`).
+//! 3. Otherwise the first character is the base: `m2` is `m_{2}`, `lc2` is `l_{c2}`, `g` is `g`.
+//! 4. The rest is the subscript, with one leading `_` dropped and any further `_` written as a comma:
 //!    `I_xx1` is `I_{xx1}`, `I_xx_1` is `I_{xx,1}`.
 
 use crate::algebra::Symbol;
@@ -135,9 +139,19 @@ fn split_base(name: &str) -> (String, &str) {
     }
 }
 
-/// A parameter's LaTeX name: base, then `_{subscript}` when there is one (rule 3).
+/// Whether a name is an identifier (rule 2): a word of three ASCII letters or more, then `_`.
+fn is_identifier(name: &str) -> bool {
+    name.split_once('_')
+        .is_some_and(|(word, _)| word.len() >= 3 && word.bytes().all(|b| b.is_ascii_alphabetic()))
+}
+
+/// A parameter's LaTeX name: an identifier upright (rule 2), else base, then `_{subscript}` when
+/// there is one (rules 1, 3 and 4).
 fn latex_param(name: &str) -> String {
     let (base, rest) = split_base(name);
+    if base.len() == 1 && is_identifier(name) {
+        return format!("\\mathrm{{{}}}", name.replace('_', "\\_"));
+    }
     let sub = rest.strip_prefix('_').unwrap_or(rest).replace('_', ",");
     if sub.is_empty() {
         base
@@ -167,6 +181,14 @@ mod tests {
             ("beta_x", "\\beta_{x}"),
             ("varphi", "\\varphi"),
             ("Alpha1", "\\mathrm{A}_{1}"),
+            // Identifiers: URDF joint names, whole and upright; Greek and short words are not.
+            ("panda_joint1", "\\mathrm{panda\\_joint1}"),
+            ("shoulder_pan_joint", "\\mathrm{shoulder\\_pan\\_joint}"),
+            ("wrist_3_joint", "\\mathrm{wrist\\_3\\_joint}"),
+            ("theta_joint", "\\theta_{joint}"),
+            ("lc_2", "l_{c,2}"),
+            ("ee_link", "e_{e,link}"),
+            ("abc1_x", "a_{bc1,x}"),
         ];
         for (name, want) in rows {
             assert_eq!(latex(&Symbol::new(name)), want, "{name}");
