@@ -23,3 +23,5 @@ pub mod repl;
 pub mod report;
 pub mod sheet;
 pub mod simulate;
+#[cfg(test)]
+mod test_support;

@@ -1122,28 +1122,10 @@ mod tests {
         }
     }
 
-    /// A sink that keeps what is written and counts the writes.
-    #[derive(Default)]
-    struct Counted {
-        bytes: Vec<u8>,
-        writes: usize,
-    }
-
-    impl std::io::Write for Counted {
-        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-            self.writes += 1;
-            self.bytes.extend_from_slice(buf);
-            Ok(buf.len())
-        }
-        fn flush(&mut self) -> std::io::Result<()> {
-            Ok(())
-        }
-    }
-
     #[test]
     fn equations_written_a_few_rows_at_a_time_are_the_text() {
         // Several equations of long rows and wide groups, hundreds of kilobytes in all, so the text is
-        // handed over in several pieces; and a small one, in one piece.
+        // handed over in several pieces; and a small one.
         let big = |k: usize| -> (Side, String) {
             let mut terms: Vec<Shown> = (1..=2000)
                 .map(|j| {
@@ -1170,28 +1152,29 @@ mod tests {
             Side::Shown(vec![product(false, "d_{2}")]),
             "u_{1}".to_string(),
         )];
-        for (equations, pieces) in [((1..=6).map(big).collect(), 2), (small, 1)] {
-            let prepare = |eqs: &Vec<(Side, String)>| -> Vec<PreparedEquation> {
-                eqs.iter()
-                    .map(|(s, r)| PreparedEquation::new(s.clone(), r.clone()))
-                    .collect()
-            };
-            let text = Layout::new().equations_prepared(prepare(&equations));
-            let mut sink = Counted::default();
+        let prepare = |eqs: &Vec<(Side, String)>| -> Vec<PreparedEquation> {
+            eqs.iter()
+                .map(|(s, r)| PreparedEquation::new(s.clone(), r.clone()))
+                .collect()
+        };
+        let large: Vec<(Side, String)> = (1..=6).map(big).collect();
+        for equations in [&large, &small] {
+            let text = Layout::new().equations_prepared(prepare(equations));
+            let mut written: Vec<u8> = Vec::new();
             Layout::new()
-                .write_equations_prepared(prepare(&equations), &mut sink)
-                .expect("written");
-            assert_eq!(String::from_utf8(sink.bytes).expect("UTF-8"), text);
-            assert!(
-                sink.writes >= pieces && (pieces > 1 || sink.writes == 1),
-                "{} bytes in {} writes",
-                text.len(),
-                sink.writes
-            );
-            if pieces > 1 {
-                assert!(text.len() > 3 * SPILL, "{} bytes", text.len());
-            }
+                .write_equations_prepared(prepare(equations), &mut written)
+                .expect("a vector takes everything");
+            assert_eq!(String::from_utf8(written).expect("UTF-8"), text);
         }
+        assert!(
+            Layout::new().equations_prepared(prepare(&large)).len() > 3 * SPILL,
+            "several pieces"
+        );
+        // A reader that went away: the first failed write is the error, and nothing panics.
+        let err = Layout::new()
+            .write_equations_prepared(prepare(&large), &mut crate::test_support::Closed)
+            .expect_err("nowhere to write");
+        assert_eq!(err.kind(), std::io::ErrorKind::BrokenPipe);
     }
 
     #[test]

@@ -132,12 +132,7 @@ pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
 /// `align*` environment whose lines stay within [`LINE_WIDTH`](crate::print::layout::LINE_WIDTH),
 /// long equations broken across rows ([`Layout::equations`]).
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
-    let rhs: Vec<String> = der
-        .robot()
-        .inputs
-        .iter()
-        .map(|u| print::to_string(&Expr::sym(Symbol::new(u)), style))
-        .collect();
+    let rhs = inputs(der, style);
     if style == Style::Latex {
         return Layout::new().equations_prepared(prepared_equations(tau(der, method), &rhs));
     }
@@ -156,12 +151,7 @@ pub fn write_equations(
     style: Style,
     sink: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
-    let rhs: Vec<String> = der
-        .robot()
-        .inputs
-        .iter()
-        .map(|u| print::to_string(&Expr::sym(Symbol::new(u)), style))
-        .collect();
+    let rhs = inputs(der, style);
     if style == Style::Latex {
         return Layout::new()
             .write_equations_prepared(prepared_equations(tau(der, method), &rhs), sink);
@@ -172,6 +162,15 @@ pub fn write_equations(
         }
     }
     Ok(())
+}
+
+/// The right sides of the equations, the robot's inputs, printed in `style`.
+fn inputs(der: &Derivation, style: Style) -> Vec<String> {
+    der.robot()
+        .inputs
+        .iter()
+        .map(|u| print::to_string(&Expr::sym(Symbol::new(u)), style))
+        .collect()
 }
 
 /// `left = right` lines: one per line in text and ASCII, a LaTeX `align*` aligned at `=`.

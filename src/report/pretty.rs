@@ -293,15 +293,7 @@ mod tests {
 
     #[test]
     fn a_sink_that_fails_reports_its_error() {
-        struct Closed;
-        impl std::io::Write for Closed {
-            fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
-                Err(std::io::ErrorKind::BrokenPipe.into())
-            }
-            fn flush(&mut self) -> std::io::Result<()> {
-                Ok(())
-            }
-        }
+        use crate::test_support::Closed;
         let err = write_pretty(&Doc::Str("x"), &mut Closed).expect_err("the sink is closed");
         assert_eq!(err.kind(), std::io::ErrorKind::BrokenPipe);
     }
