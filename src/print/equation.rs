@@ -469,18 +469,16 @@ impl Write {
 impl Sink for Write {
     fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) {
         self.sign(c.is_negative());
-        let start = self.out.len();
-        r.product_into(&mut self.out, c, factors);
-        let space = self.out.as_bytes()[start..].contains(&b' ');
+        let space = r.measured_product(&mut self.out, c, factors).spaced;
         self.spaced(space);
     }
 
     fn open(&mut self, r: &mut Renderer, before: &[(u32, i32)]) {
         self.sign(false);
-        let start = self.out.len();
         if !before.is_empty() {
-            r.product_into(&mut self.out, &Rational::one(), before);
-            let space = self.out.as_bytes()[start..].contains(&b' ');
+            let space = r
+                .measured_product(&mut self.out, &Rational::one(), before)
+                .spaced;
             self.spaced(space || self.style != Style::Ascii);
             self.out.push(separator(self.style));
         }
@@ -512,9 +510,9 @@ impl Sink for Write {
         self.out.push_str(parentheses(self.style).1);
         if !after.is_empty() {
             self.out.push(separator(self.style));
-            let start = self.out.len();
-            r.product_into(&mut self.out, &Rational::one(), after);
-            let space = self.out.as_bytes()[start..].contains(&b' ');
+            let space = r
+                .measured_product(&mut self.out, &Rational::one(), after)
+                .spaced;
             self.spaced(space || self.style != Style::Ascii);
         }
     }

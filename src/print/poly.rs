@@ -9,6 +9,7 @@
 //! atoms outside the plain class (opaque expressions, sines of constant angles) take the canonical
 //! route, so the result is always the same text.
 
+use super::layout::width;
 use super::{latex, text, Piece, Product, Style};
 use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::{Expr, Poly, Rational};
@@ -199,22 +200,44 @@ pub struct Renderer<'a> {
     style: Style,
     /// The text of every factor rendered so far, one after another.
     texts: String,
-    /// `(rank, exponent, guarded)` → the range of its text in `texts` (empty: not rendered yet), for
-    /// exponents `1..=DENSE_POWERS`, the powers of almost every factor.
-    dense: Vec<(u32, u32)>,
-    /// The other factors rendered so far, and their ranges.
-    sparse: Vec<(FactorKey, (u32, u32))>,
+    /// `(rank, exponent, guarded)` → the factor rendered (empty: not yet), for exponents
+    /// `1..=DENSE_POWERS`, the powers of almost every factor.
+    dense: Vec<Rendered>,
+    /// The other factors rendered so far.
+    sparse: Vec<(FactorKey, Rendered)>,
 }
 
 /// A factor to render: its rank, its exponent, and whether it is guarded.
 type FactorKey = (u32, i32, bool);
 
+/// A factor rendered: the range of its text in [`Renderer`]'s texts, its [`width`], and whether it
+/// has a space.
+#[derive(Clone, Copy, Debug, Default)]
+struct Rendered {
+    start: u32,
+    end: u32,
+    width: u32,
+    spaced: bool,
+}
+
+/// The [`width`] of a product's text, and whether it has a space ([`Renderer::measured_product`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Measure {
+    /// The width, in [`width`]'s units.
+    pub width: usize,
+    /// Whether the text has a space.
+    pub spaced: bool,
+}
+
 /// The powers `1..=DENSE_POWERS` of a rank have a slot each in [`Renderer`]'s table.
 const DENSE_POWERS: i32 = 4;
 
-/// Appends the decimal digits of `n`.
-fn push_u64(out: &mut String, n: u64) {
-    out.push_str(itoa::Buffer::new().format(n));
+/// Appends the decimal digits of `n`; their number is their width.
+fn push_u64(out: &mut String, n: u64) -> usize {
+    let mut digits = itoa::Buffer::new();
+    let text = digits.format(n);
+    out.push_str(text);
+    text.len()
 }
 
 impl<'a> Renderer<'a> {
@@ -224,7 +247,7 @@ impl<'a> Renderer<'a> {
             ranks,
             style,
             texts: String::new(),
-            dense: vec![(0, 0); ranks.atoms.len() * 2 * DENSE_POWERS as usize],
+            dense: vec![Rendered::default(); ranks.atoms.len() * 2 * DENSE_POWERS as usize],
             sparse: Vec::new(),
         }
     }
@@ -234,33 +257,46 @@ impl<'a> Renderer<'a> {
         self.ranks
     }
 
-    /// The text of `base^exp` (`guarded`: followed by a factor that is not a sine or cosine, which
-    /// LaTeX separates from a function's argument), rendered once per renderer.
-    fn factor(&mut self, rank: u32, exp: i32, guarded: bool) -> &str {
+    /// `base^exp` (`guarded`: followed by a factor that is not a sine or cosine, which LaTeX
+    /// separates from a function's argument), rendered once per renderer.
+    fn factor(&mut self, rank: u32, exp: i32, guarded: bool) -> Rendered {
         let guarded = guarded && self.style == Style::Latex;
-        let slot = if (1..=DENSE_POWERS).contains(&exp) {
+        if (1..=DENSE_POWERS).contains(&exp) {
             let at =
                 (rank as usize * DENSE_POWERS as usize + (exp - 1) as usize) * 2 + guarded as usize;
-            if self.dense[at].1 == 0 {
+            if self.dense[at].end == 0 {
                 self.dense[at] = self.render(rank, exp, guarded);
             }
-            self.dense[at]
-        } else {
-            let key = (rank, exp, guarded);
-            match self.sparse.iter().find(|(k, _)| *k == key) {
-                Some(&(_, range)) => range,
-                None => {
-                    let range = self.render(rank, exp, guarded);
-                    self.sparse.push((key, range));
-                    range
-                }
+            return self.dense[at];
+        }
+        let key = (rank, exp, guarded);
+        match self.sparse.iter().find(|(k, _)| *k == key) {
+            Some(&(_, rendered)) => rendered,
+            None => {
+                let rendered = self.render(rank, exp, guarded);
+                self.sparse.push((key, rendered));
+                rendered
             }
-        };
-        &self.texts[slot.0 as usize..slot.1 as usize]
+        }
     }
 
-    /// Renders `base^exp` at the end of `texts` and returns its range (never empty).
-    fn render(&mut self, rank: u32, exp: i32, guarded: bool) -> (u32, u32) {
+    /// Appends `base^exp` ([`Renderer::factor`]) to `out`, and counts it into `m`.
+    fn push_factor(
+        &mut self,
+        out: &mut String,
+        m: &mut Measure,
+        rank: u32,
+        exp: i32,
+        guarded: bool,
+    ) {
+        let f = self.factor(rank, exp, guarded);
+        out.push_str(&self.texts[f.start as usize..f.end as usize]);
+        m.width += f.width as usize;
+        m.spaced |= f.spaced;
+    }
+
+    /// Renders `base^exp` at the end of `texts` (never empty).
+    fn render(&mut self, rank: u32, exp: i32, guarded: bool) -> Rendered {
         let base = self.ranks.base(rank);
         let text = match self.style {
             Style::Latex => latex::factor(base, exp as i64, guarded),
@@ -269,7 +305,12 @@ impl<'a> Renderer<'a> {
         debug_assert!(!text.is_empty(), "a factor prints as something");
         let start = self.texts.len() as u32;
         self.texts.push_str(&text);
-        (start, self.texts.len() as u32)
+        Rendered {
+            start,
+            end: self.texts.len() as u32,
+            width: width(&text) as u32,
+            spaced: text.contains(' '),
+        }
     }
 
     /// The magnitude of `|c| · Π factors` (factors sorted by rank): `2 m2 lc2^2`, `1/2 m1`,
@@ -282,6 +323,18 @@ impl<'a> Renderer<'a> {
 
     /// [`Renderer::product`], appended to `out`.
     pub fn product_into(&mut self, out: &mut String, c: &Rational, factors: &[(u32, i32)]) {
+        self.measured_product(out, c, factors);
+    }
+
+    /// [`Renderer::product_into`], and the [`width`] of what it appended and whether that has a
+    /// space, counted as it is written (each factor's once, when it is first rendered): what
+    /// measuring the text would give, without reading it again.
+    pub fn measured_product(
+        &mut self,
+        out: &mut String,
+        c: &Rational,
+        factors: &[(u32, i32)],
+    ) -> Measure {
         if factors.iter().any(|&(_, e)| e < 0) {
             let list: Vec<(Expr, i64)> = factors
                 .iter()
@@ -291,11 +344,25 @@ impl<'a> Renderer<'a> {
                 negative: false,
                 product: Product::new(&c.abs(), &list),
             };
-            out.push_str(&sum_string(std::slice::from_ref(&piece), self.style));
-            return;
+            let text = sum_string(std::slice::from_ref(&piece), self.style);
+            out.push_str(&text);
+            return Measure {
+                width: width(&text),
+                spaced: text.contains(' '),
+            };
         }
         let latex = self.style == Style::Latex;
-        let sep = if self.style == Style::Ascii { '*' } else { ' ' };
+        let (sep, sep_width) = if self.style == Style::Ascii {
+            ('*', 1)
+        } else {
+            (' ', 0)
+        };
+        let mut m = Measure::default();
+        let separate = |out: &mut String, m: &mut Measure| {
+            out.push(sep);
+            m.width += sep_width;
+            m.spaced |= sep == ' ';
+        };
         let start = out.len();
         // Leading surds and powers of π join the number.
         let numeric = factors
@@ -305,7 +372,7 @@ impl<'a> Renderer<'a> {
             })
             .count();
         // The number: the numerator unless it is 1, then the numeric factors; `1` when empty and
-        // over a denominator.
+        // over a denominator. `\frac`, its braces and `/`'s absence in LaTeX take no width.
         let small = c.as_small();
         let denom_one = match small {
             Some((_, d)) => d == 1,
@@ -317,7 +384,7 @@ impl<'a> Renderer<'a> {
         let number_start = out.len();
         match small {
             Some((n, _)) if n.unsigned_abs() == 1 => {}
-            Some((n, _)) => push_u64(out, n.unsigned_abs()),
+            Some((n, _)) => m.width += push_u64(out, n.unsigned_abs()),
             None => {
                 let n = c.numer();
                 let n = if n < num_bigint::BigInt::from(0) {
@@ -326,24 +393,36 @@ impl<'a> Renderer<'a> {
                     n
                 };
                 if n != num_bigint::BigInt::from(1) {
-                    out.push_str(&n.to_string());
+                    let digits = n.to_string();
+                    out.push_str(&digits);
+                    m.width += digits.len();
                 }
             }
         }
         for &(r, e) in &factors[..numeric] {
             if out.len() > number_start {
-                out.push(sep);
+                separate(out, &mut m);
             }
-            out.push_str(self.factor(r, e, false));
+            self.push_factor(out, &mut m, r, e, false);
         }
         if !denom_one {
             if out.len() == number_start {
                 out.push('1');
+                m.width += 1;
             }
-            out.push_str(if latex { "}{" } else { "/" });
+            if latex {
+                out.push_str("}{");
+            } else {
+                out.push('/');
+                m.width += 1;
+            }
             match small {
-                Some((_, d)) => push_u64(out, d as u64),
-                None => out.push_str(&c.denom().to_string()),
+                Some((_, d)) => m.width += push_u64(out, d as u64),
+                None => {
+                    let digits = c.denom().to_string();
+                    out.push_str(&digits);
+                    m.width += digits.len();
+                }
             }
             if latex {
                 out.push('}');
@@ -356,13 +435,15 @@ impl<'a> Renderer<'a> {
                     !matches!(atom::class(self.ranks.atom(next)), Class::Sin | Class::Cos)
                 });
             if out.len() > start {
-                out.push(sep);
+                separate(out, &mut m);
             }
-            out.push_str(self.factor(r, e, guarded));
+            self.push_factor(out, &mut m, r, e, guarded);
         }
         if out.len() == start {
             out.push('1');
+            m.width += 1;
         }
+        m
     }
 
     /// The canonical sum of `p`'s terms, printed (`nested`: compact unless a term has a space).
@@ -521,6 +602,49 @@ mod tests {
             let want: Vec<String> = refs.iter().map(|q| one.sum(q, false)).collect();
             assert_eq!(polys_to_strings(&refs, style), want);
         }
+    }
+
+    #[test]
+    fn a_product_measured_as_written_is_its_text_measured() {
+        // Numbers small and big, over denominators or not; surds and π joined to the number; powers
+        // up to and past the dense table; sines guarded before other factors; negative powers
+        // (printed the general way); a bare coefficient.
+        let rows = [
+            "3/7*m1*lc2^2*qd1 - m2 + 5",
+            "123456789012345678901234567890/7*a*sin(q1)^5*cos(q2)*qdd1 - 1/123456789012345678901",
+            "pi*m1/2 + sqrt(2)*a/3 + sqrt(3)*pi^2*b^6 - sin(q1)*m2*cos(q3)^2*lc1",
+            "m1/lc2 + g*m1/(l1*l2) - 7/(2*x) + theta1*alpha2*qd3^4",
+        ];
+        let (mut products, mut spaced) = (0, 0);
+        for s in rows {
+            let poly = p(s);
+            let ranks = Ranks::of([&poly]).expect("plain atoms");
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                let mut r = Renderer::new(&ranks, style);
+                // Twice over, so the factors come from the renderer's table the second time.
+                for _ in 0..2 {
+                    for (m, c) in poly.terms() {
+                        let mut factors: Vec<(u32, i32)> = m
+                            .factors()
+                            .iter()
+                            .map(|&(id, e)| (ranks.rank(id), e))
+                            .collect();
+                        factors.sort_unstable();
+                        let mut out = String::from("x + ");
+                        let measured = r.measured_product(&mut out, c, &factors);
+                        let text = &out[4..];
+                        assert_eq!(measured.width, width(text), "{text} in {style:?}");
+                        assert_eq!(measured.spaced, text.contains(' '), "{text}");
+                        products += 1;
+                        spaced += usize::from(measured.spaced);
+                    }
+                }
+            }
+        }
+        assert!(
+            products > 40 && spaced > 10,
+            "{products} products, {spaced} spaced"
+        );
     }
 
     #[test]

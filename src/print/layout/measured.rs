@@ -93,11 +93,10 @@ impl Sink for Measure {
         let f = self.frames.last_mut().expect("a frame");
         f.sign(c.is_negative());
         let start = f.sum.text.len();
-        r.product_into(&mut f.sum.text, c, factors);
+        let m = r.measured_product(&mut f.sum.text, c, factors);
         let end = f.sum.text.len();
-        let text = &f.sum.text[start..end];
-        let w = width(text);
-        f.spaced |= text.contains(' ');
+        let w = m.width;
+        f.spaced |= m.spaced;
         f.width += w;
         f.sum.terms.push(Measured {
             negative: c.is_negative(),
