@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use symdyn::algebra::{eval_f64, Expr, Symbol};
 use symdyn::dynamics::check::check;
 use symdyn::dynamics::numeric::inverse_dynamics;
-use symdyn::dynamics::{Convention, Derivation, Joint, JointKind, Link, Robot};
+use symdyn::dynamics::{Convention, Derivation, Frame, Joint, JointKind, Link, Robot};
 
 /// A DH constant: 0, a symbol, or a rational, picked by `pick`.
 fn constant(pick: u8, name: &str) -> Expr {
@@ -114,6 +114,12 @@ proptest! {
         let der = Derivation::new(r.clone()).unwrap();
         for claim in check(&der) {
             prop_assert!(claim.holds, "{}: {:?}", claim.statement, claim.failures);
+        }
+        // `check` takes Newton–Euler in body frames from the compact program: the expanded
+        // recursion, which `derive --method newton-euler` prints, is compared here.
+        let el = der.lagrange();
+        for frame in [Frame::Body, Frame::Inertial] {
+            prop_assert!(der.newton_euler(frame).tau[..] == el.tau[..], "{frame:?}");
         }
         // Numbers: every symbol gets a pseudo-random value.
         let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);

@@ -8,9 +8,11 @@
 //!
 //! How each claim is decided depends on size ([`CheckOptions::proof`]'s budget, the largest expanded
 //! `τ_k` in terms):
-//! - while every `τ_k` expands within the budget (probed on the compact Newton–Euler `τ`, whose
-//!   expansion is then the Newton–Euler side), the expanded derivations are compared by the exact
-//!   zero test of the canonical normal form, as a worked solution would: [`ClaimProof::Exact`];
+//! - while every `τ_k` expands within the budget (probed on the compact Newton–Euler `τ` in body
+//!   frames, whose expansion is then the Newton–Euler side in body frames; in the inertial frame it
+//!   is the expanded recursion's, [`crate::dynamics::ne_symbolic`]), the expanded derivations are
+//!   compared by the exact zero test of the canonical normal form, as a worked solution would:
+//!   [`ClaimProof::Exact`];
 //! - beyond it, the compact quantities are compared by exact rational evaluation at random points
 //!   ([`crate::algebra::compact::identity`]), with the Schwartz–Zippel bound on the chance of a wrong
 //!   "equal" below `2^−128`: [`ClaimProof::Randomized`]. A difference found at a point is a definite
@@ -123,12 +125,19 @@ struct Pending {
 pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
     let cd = der.compact();
     let mut probe = cd.arena.expander(opts.proof.budget);
-    let fits = opts.proof.budget > 0 && cd.tau_ne.iter().all(|t| probe.expand(t).is_ok());
-    if fits {
+    // The compact Newton–Euler τ (body frames) expanded, if every τ_k fits the budget: the
+    // Newton–Euler side of the exact proof in body frames, and the sign that the proofs are exact.
+    let tau_body: Option<Vec<Poly>> = if opts.proof.budget > 0 {
+        cd.tau_ne.iter().map(|t| probe.expand(t).ok()).collect()
+    } else {
+        None
+    };
+    if let Some(tau_body) = tau_body {
         // Newton–Euler in the inertial frame is the costliest derivation here (its vectors hold
         // every angle from the base on) and depends on no other: a thread derives it meanwhile,
         // for a robot with three revolute joints or more (below that it takes less time than a
-        // thread takes to start).
+        // thread takes to start). Its compact τ expanded would do as well, but costs more than the
+        // expanded recursion.
         let ahead = opts.frames.contains(&Frame::Inertial)
             && der.robot().revolute_joints() >= 3
             && crate::parallel::threads() >= 2;
@@ -138,7 +147,14 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
                     der.newton_euler(Frame::Inertial);
                 });
             }
-            let mut claims: Vec<Claim> = opts.frames.iter().map(|&f| agreement(der, f)).collect();
+            let mut claims: Vec<Claim> = opts
+                .frames
+                .iter()
+                .map(|&f| match f {
+                    Frame::Body => agreement(der, f, &tau_body),
+                    Frame::Inertial => agreement(der, f, &der.newton_euler(f).tau),
+                })
+                .collect();
             claims.extend(identities(der));
             claims
         });
@@ -225,13 +241,13 @@ fn randomized(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
         .collect()
 }
 
-/// The exact claim that the expanded Euler–Lagrange and Newton–Euler (in `frame`) equations are
-/// identical: the normal form is canonical, so they are equal exactly when they are equal term by term.
-fn agreement(der: &Derivation, frame: Frame) -> Claim {
+/// The exact claim that the expanded Euler–Lagrange equations and `ne`, the expanded Newton–Euler
+/// `τ` in `frame`, are identical: the normal form is canonical, so they are equal exactly when they
+/// are equal term by term.
+fn agreement(der: &Derivation, frame: Frame, ne: &[Poly]) -> Claim {
     let el = der.lagrange();
-    let ne = der.newton_euler(frame);
     let bad: Vec<String> = (0..der.robot().dof())
-        .filter(|&k| el.tau[k] != ne.tau[k])
+        .filter(|&k| el.tau[k] != ne[k])
         .map(|k| format!("equation {}", k + 1))
         .collect();
     exact(agreement_statement(frame), bad)
@@ -350,4 +366,33 @@ pub fn witness_text(w: &Witness) -> String {
         })
         .collect();
     format!("at {}: {} ≠ {}", values.join(", "), w.left, w.right)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse::{parse_scene, BUILTIN_PPP};
+
+    /// The exact comparison is term by term: the compact Newton–Euler `τ` expanded agrees with
+    /// Euler–Lagrange, and one changed term in one equation is that equation's failure.
+    #[test]
+    fn an_exact_agreement_refuses_an_equation_that_differs() {
+        let der = Derivation::new(parse_scene(BUILTIN_PPP).expect("parses").robot).expect("valid");
+        let cd = der.compact();
+        let mut ex = cd.arena.expander(1000);
+        let tau: Vec<Poly> = cd
+            .tau_ne
+            .iter()
+            .map(|t| ex.expand(t).expect("fits"))
+            .collect();
+        let claim = agreement(&der, Frame::Body, &tau);
+        assert!(claim.holds && claim.proof == ClaimProof::Exact, "{claim:?}");
+        let mut wrong = tau.clone();
+        wrong[1] = wrong[1].add(&crate::algebra::to_poly(&crate::algebra::Expr::symbol(
+            "m2",
+        )));
+        let claim = agreement(&der, Frame::Body, &wrong);
+        assert!(!claim.holds, "{claim:?}");
+        assert_eq!(claim.failures, vec!["equation 2".to_string()]);
+    }
 }
