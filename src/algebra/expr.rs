@@ -312,6 +312,13 @@ impl Expr {
         Expr::make(Kind::Mul(Rational::one(), vec![(base, e)]))
     }
 
+    /// Whether this is a plain base: a symbol, a function or π. The factors of a canonical product
+    /// of plain bases, less some of them, are a product as they stand
+    /// ([`Expr::monomial_of_sorted_bases`]); other bases (numbers, surds, sums) may need merging.
+    pub(crate) fn is_plain_base(&self) -> bool {
+        matches!(self.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi)
+    }
+
     /// The monomial `Π bᵢ^kᵢ` (coefficient 1) of bases that are already canonical, pairwise
     /// distinct, neither numbers, square roots nor sums, in the total order, with non-zero exponents:
     /// what [`Expr::product`] makes of them, without its merging. For a polynomial's terms

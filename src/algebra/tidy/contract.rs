@@ -302,9 +302,7 @@ fn angle_sum(e: &Expr) -> Option<Expr> {
         .map(|((rest, a, b), cands)| {
             // What is left of a canonical product's factor list is sorted and distinct: of plain
             // bases (the normal form's), it is a product as it stands.
-            let plain = rest
-                .iter()
-                .all(|(base, _)| matches!(base.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi));
+            let plain = rest.iter().all(|(base, _)| base.is_plain_base());
             let rest = if plain {
                 Expr::monomial_of_sorted_bases(rest)
             } else {

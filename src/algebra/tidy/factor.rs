@@ -119,11 +119,9 @@ impl Term {
 /// is a symbol, a function or π (already a sorted product: [`Expr::monomial_of_sorted_bases`]),
 /// built by [`Term::divided`] otherwise.
 fn divided_sum(terms: &[Term], scale: &Rational, monomial: &[(Expr, i64)]) -> Expr {
-    let direct = terms.iter().all(|t| {
-        t.factors
-            .iter()
-            .all(|(b, _)| matches!(b.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi))
-    });
+    let direct = terms
+        .iter()
+        .all(|t| t.factors.iter().all(|(b, _)| b.is_plain_base()));
     if !direct {
         return Expr::sum(terms.iter().map(|t| t.divided(scale, monomial)));
     }

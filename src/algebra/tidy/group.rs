@@ -66,10 +66,7 @@ fn by_leading_param(e: &Expr) -> Vec<(Expr, Expr)> {
         let parts = groups.entry(key).or_default();
         if factors.is_empty() {
             parts.push((Expr::one(), c));
-        } else if factors
-            .iter()
-            .all(|(b, _)| matches!(b.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi))
-        {
+        } else if factors.iter().all(|(b, _)| b.is_plain_base()) {
             parts.push((Expr::monomial_of_sorted_bases(factors), c));
         } else {
             let rest = factors.into_iter().map(|(b, k)| power(&b, k));

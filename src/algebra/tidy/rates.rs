@@ -50,12 +50,6 @@ struct Split {
     monomial: Expr,
 }
 
-/// Whether a base is plain (a symbol, a function or π): a canonical product of such bases, less some
-/// of them, is a product as it stands ([`Expr::monomial_of_sorted_bases`]).
-fn plain(base: &Expr) -> bool {
-    matches!(base.kind(), Kind::Sym(_) | Kind::Fun(..) | Kind::Pi)
-}
-
 fn split(t: Expr, coeff: Rational) -> Split {
     let mut rates = Vec::new();
     let mut rest = Vec::new();
@@ -65,7 +59,7 @@ fn split(t: Expr, coeff: Rational) -> Split {
             _ => rest.push((b, k)),
         }
     }
-    let rest = if rest.iter().all(|(b, _)| plain(b)) {
+    let rest = if rest.iter().all(|(b, _)| b.is_plain_base()) {
         Expr::monomial_of_sorted_bases(rest)
     } else {
         Expr::product(
@@ -336,7 +330,7 @@ fn collect_parameters(terms: Vec<Expr>) -> (Vec<Expr>, bool) {
             kept.push(t);
             continue;
         }
-        let rest = if others.iter().all(|(b, _)| plain(b)) {
+        let rest = if others.iter().all(|(b, _)| b.is_plain_base()) {
             Expr::monomial_of_sorted_bases(others)
         } else {
             Expr::product(others.into_iter().map(power))
