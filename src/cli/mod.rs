@@ -52,8 +52,10 @@ pub struct Args {
     pub extras: Option<String>,
 }
 
-/// The commands.
+/// The commands. Each one's arguments are built only when it runs (`defer`): clap would otherwise
+/// build every command's arguments and help on every start, about a third of a millisecond.
 #[derive(Subcommand, Debug)]
+#[command(defer = true)]
 pub enum Command {
     /// Derive the equations of motion of a scene or URDF file (default: the built-in PPP arm of Spong
     /// et al. 7.7). Every command that takes a scene also takes a URDF file, told apart by its content.
