@@ -299,9 +299,23 @@ impl Rational {
         {
             return None;
         }
+        let scale = exponent.checked_sub(frac_part.len() as i64)?;
+        // The decimals of a scene (`0.0825`, `-1.5707963`, `3e-3`) fit a machine word: no big
+        // integers then.
+        if int_part.len() + frac_part.len() <= 18 && scale.unsigned_abs() <= 18 {
+            let num = int_part
+                .bytes()
+                .chain(frac_part.bytes())
+                .fold(0i64, |n, b| n * 10 + i64::from(b - b'0'));
+            let power = 10i64.pow(scale.unsigned_abs() as u32);
+            return Some(if scale >= 0 {
+                Rational::from_i128(i128::from(num) * i128::from(power), 1)
+            } else {
+                Rational::from_i128(i128::from(num), i128::from(power))
+            });
+        }
         let digits = format!("{int_part}{frac_part}");
         let num: BigInt = digits.parse().ok()?;
-        let scale = exponent.checked_sub(frac_part.len() as i64)?;
         if scale.unsigned_abs() > 100_000 {
             return None;
         }
@@ -729,6 +743,55 @@ mod tests {
         assert_eq!(Rational::parse_decimal("90"), Some(Rational::int(90)));
         assert_eq!(Rational::parse_decimal("1e2"), Some(Rational::int(100)));
         assert_eq!(Rational::parse_decimal("."), None);
+    }
+
+    /// Short decimals take machine words, long ones big integers: both give the value that big
+    /// integers give, at the boundary (18 digits, a scale of ±18) and past it.
+    #[test]
+    fn short_and_long_decimals_are_the_same_values() {
+        fn by_big_integers(text: &str) -> Rational {
+            let (mantissa, exponent) = match text.find(['e', 'E']) {
+                Some(i) => (&text[..i], text[i + 1..].parse::<i64>().unwrap()),
+                None => (text, 0),
+            };
+            let (int_part, frac_part) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+            let num: BigInt = format!("{int_part}{frac_part}").parse().unwrap();
+            let scale = exponent - frac_part.len() as i64;
+            let ten = BigInt::from(10);
+            Rational::from_big(if scale >= 0 {
+                BigRational::from_integer(num * num_traits::pow(ten, scale as usize))
+            } else {
+                BigRational::new(num, num_traits::pow(ten, (-scale) as usize))
+            })
+        }
+        let mut checked = 0;
+        for mantissa in [
+            "0",
+            "000",
+            "7",
+            "0.0825",
+            "1.5707963",
+            "0.000000000000000001",
+            "123456789.123456789",
+            "999999999999999999",
+            "9999999999999999999",
+            "12345678901234567890.5",
+            ".5",
+            "5.",
+        ] {
+            for exponent in [
+                "", "e0", "e3", "e-3", "E17", "e-18", "e18", "e-19", "e19", "e-40",
+            ] {
+                let text = format!("{mantissa}{exponent}");
+                assert_eq!(
+                    Rational::parse_decimal(&text),
+                    Some(by_big_integers(&text)),
+                    "{text}"
+                );
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 120);
     }
 
     #[test]
