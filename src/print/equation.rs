@@ -104,7 +104,7 @@ impl Body {
 }
 
 /// The separator between a group's factors and its parentheses: `*` in ASCII, a space otherwise.
-fn separator(style: Style) -> char {
+pub(crate) fn separator(style: Style) -> char {
     if style == Style::Ascii {
         '*'
     } else {
@@ -113,7 +113,7 @@ fn separator(style: Style) -> char {
 }
 
 /// A group's opening and closing parentheses in `style`.
-fn parentheses(style: Style) -> (&'static str, &'static str) {
+pub(crate) fn parentheses(style: Style) -> (&'static str, &'static str) {
     if style == Style::Latex {
         ("\\left(", "\\right)")
     } else {

@@ -10,7 +10,7 @@ use super::{
     PreparedEquation, BUDGET,
 };
 use crate::algebra::{Poly, Rational};
-use crate::print::equation::{lay_out, Sink};
+use crate::print::equation::{lay_out, parentheses, separator, Sink};
 use crate::print::poly::{Ranks, Renderer};
 use crate::print::Style;
 use std::sync::Arc;
@@ -58,7 +58,7 @@ impl Open {
 
 /// The sink of [`PreparedEquation::from_poly`]: the open sums, the side's own first, and the room of
 /// the side's rows.
-struct Measure {
+struct Measuring {
     frames: Vec<Open>,
     room: usize,
     /// Whether a group that fits its row holds one too wide for a row (which the rooms' order rules
@@ -66,7 +66,7 @@ struct Measure {
     mixed: bool,
 }
 
-impl Measure {
+impl Measuring {
     /// The room of the rows of the sum at `depth`: the side's own, or an abbreviation's (given on
     /// rows of its own after the equations). Never less at a greater depth, so a group too wide
     /// for its row is always inside groups too wide for theirs.
@@ -88,7 +88,7 @@ fn factors_text(r: &mut Renderer, factors: &[(u32, i32)]) -> String {
     out
 }
 
-impl Sink for Measure {
+impl Sink for Measuring {
     fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) {
         let f = self.frames.last_mut().expect("a frame");
         f.sign(c.is_negative());
@@ -146,11 +146,12 @@ impl Sink for Measure {
         // The group as one text, as `Body::write` prints it.
         let out = &mut parent.sum.text;
         let start = out.len();
+        let (open, close) = parentheses(Style::Latex);
         if !inner.before.is_empty() {
             out.push_str(&inner.before);
-            out.push(' ');
+            out.push(separator(Style::Latex));
         }
-        out.push_str("\\left(");
+        out.push_str(open);
         if inner.sum.terms.is_empty() {
             out.push('0');
         }
@@ -170,9 +171,9 @@ impl Sink for Measure {
                 out.push_str(&inner.sum.text[start..end]);
             }
         }
-        out.push_str("\\right)");
+        out.push_str(close);
         if !after.is_empty() {
-            out.push(' ');
+            out.push(separator(Style::Latex));
             out.push_str(&after);
         }
         let end = out.len();
@@ -191,7 +192,7 @@ impl PreparedEquation {
     /// line beside `rhs`: [`PreparedEquation::new`] takes those.
     pub fn from_poly(p: &Poly, rhs: String) -> Option<PreparedEquation> {
         let ranks = Ranks::of([p])?;
-        let mut sink = Measure {
+        let mut sink = Measuring {
             frames: vec![Open::new(String::new(), 48 * p.len())],
             room: room_before(&format!(" = {rhs}")),
             mixed: false,
