@@ -308,3 +308,43 @@ fn several_threads_print_what_one_prints() {
         "{err}"
     );
 }
+
+/// A scene too large to expand is refused before it is expanded, with the advice to use `--compact`
+/// (the 12-joint all-symbolic chain's expanded derivation passes 16 GB); `--expand-limit` sets the
+/// limit for any scene, and the measurement never changes what a scene that fits prints.
+#[test]
+fn expansion_too_large_is_refused_with_advice() {
+    let dir = std::env::temp_dir().join(format!("symdyn-expand-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let chain = dir.join("chain-12.scene");
+    std::fs::write(&chain, symdyn::chains::chain_scene(12)).unwrap();
+    let (out, err, code) = symdyn(&["derive", chain.to_str().unwrap()]);
+    assert_eq!((code, out.as_str()), (1, ""), "{err}");
+    assert!(err.contains("chain-12.scene: the expanded d11 of D(q) alone passes 300000 terms"));
+    assert!(
+        err.contains("--compact") && err.contains("--expand-limit 0"),
+        "{err}"
+    );
+    // The compact form of the same chain prints.
+    let (out, err, code) = symdyn(&["derive", chain.to_str().unwrap(), "--compact"]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    assert!(out.trim_end().ends_with("= tau12"), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
+
+    // A small robot is measured when a limit is given: the all-symbolic PUMA 560's d11 has more than
+    // 50 terms (d11 = I1zz + … alone names a dozen parameters), fewer than 100000.
+    let puma = "examples/puma560_symbolic.scene";
+    let (out, err, code) = symdyn(&["derive", puma, "--expand-limit", "50"]);
+    assert_eq!((code, out.as_str()), (1, ""), "{err}");
+    assert!(
+        err.contains("the expanded d11 of D(q) alone passes 50 terms"),
+        "{err}"
+    );
+    let (plain, _, code) = symdyn(&["derive", puma]);
+    assert_eq!(code, 0);
+    for limit in ["100000", "0"] {
+        let (out, err, code) = symdyn(&["derive", puma, "--expand-limit", limit]);
+        assert_eq!((code, err.as_str()), (0, ""), "--expand-limit {limit}");
+        assert_eq!(out, plain, "--expand-limit {limit}");
+    }
+}

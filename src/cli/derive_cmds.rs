@@ -6,7 +6,7 @@ use super::CliError;
 use std::cell::RefCell;
 use symdyn::dynamics::check::{check_with, CheckOptions};
 use symdyn::dynamics::ne_compact::CompactProgram;
-use symdyn::dynamics::{Derivation, Frame, Robot};
+use symdyn::dynamics::{Derivation, Frame, Robot, EXPANSION_LIMIT};
 use symdyn::parse::urdf::UrdfOptions;
 use symdyn::parse::{parse_robot, BUILTIN_PPP};
 use symdyn::print::Style;
@@ -120,6 +120,32 @@ pub(super) fn leave(der: Derivation) {
     std::mem::forget(der);
 }
 
+/// The joints from which `derive` measures a scene before expanding it. Below them every scene
+/// expands within [`EXPANSION_LIMIT`] with room to spare (the generic all-symbolic chain of seven
+/// joints has a `d11` of about 5,000 terms) and the measurement would only add time.
+const MEASURED_FROM: usize = 8;
+
+/// Refuses a scene whose expanded equations would pass `limit` (default [`EXPANSION_LIMIT`], 0 for
+/// none) terms in an entry of `D(q)`, before any of it is expanded ([`Derivation::expansion_fits`]),
+/// with the advice to print the compact form. Such a derivation takes minutes and tens of gigabytes,
+/// or runs out of memory, and prints gigabytes of text nobody reads.
+fn fits(der: &Derivation, scene: Option<&str>, limit: Option<usize>) -> Result<(), CliError> {
+    let measure = limit.is_some() || der.robot().dof() >= MEASURED_FROM;
+    let limit = limit.unwrap_or(EXPANSION_LIMIT);
+    if !measure || limit == 0 {
+        return Ok(());
+    }
+    der.expansion_fits(limit).map_err(|e| {
+        CliError::Input(format!(
+            "error: {}: {e}, too large to expand and print ({} joints). Use `symdyn derive \
+             --compact` for every quantity over named intermediates, `symdyn check` for the proofs, \
+             or --expand-limit 0 to expand anyway (it may take minutes and run out of memory)",
+            scene.unwrap_or("<built-in ppp.scene>"),
+            der.robot().dof()
+        ))
+    })
+}
+
 /// `symdyn derive`.
 pub fn derive(
     scene: Option<&str>,
@@ -127,8 +153,10 @@ pub fn derive(
     frame: FrameArg,
     format: Format,
     ascii: bool,
+    expand_limit: Option<usize>,
 ) -> Result<String, CliError> {
     let der = load(scene)?;
+    fits(&der, scene, expand_limit)?;
     let frame = match frame {
         FrameArg::Body => Frame::Body,
         FrameArg::Inertial => Frame::Inertial,

@@ -80,6 +80,11 @@ pub enum Command {
         /// `tau_k = …`). In every format; small at any size, so use it for large robots.
         #[arg(long)]
         compact: bool,
+        /// Refuse to expand when an entry of D(q) alone would pass this many terms, and say to use
+        /// --compact (default 300000; 0 expands whatever the size). A scene of eight joints or more is
+        /// measured on its compact form first, or any scene when this is given.
+        #[arg(long, value_name = "TERMS")]
+        expand_limit: Option<usize>,
     },
     /// Prove that Euler–Lagrange and Newton–Euler (both frames) agree, that D(q) is symmetric and that
     /// Ḋ − 2C is skew-symmetric; exit non-zero if any claim fails.
@@ -410,11 +415,12 @@ pub fn run(args: Args) -> Result<String, CliError> {
             format,
             ascii,
             compact,
+            expand_limit,
         } => {
             if compact {
                 derive_cmds::derive_compact(scene.as_deref(), method, frame, format, ascii)
             } else {
-                derive_cmds::derive(scene.as_deref(), method, frame, format, ascii)
+                derive_cmds::derive(scene.as_deref(), method, frame, format, ascii, expand_limit)
             }
         }
         Command::Check {
