@@ -446,3 +446,102 @@ fn cli_text_and_json() {
     ]);
     assert_snap!("ppp_qdd_json", out);
 }
+
+/// A robot too large to expand quickly (the all-symbolic 9-joint chain: its expanded `d11` has
+/// 35,064 terms, past `QUICK_EXPANSION`) is evaluated from the compact form: a missing parameter is
+/// reported at once, with every parameter the recursion names; `D`, `C` and `g` come from the
+/// generated code's functions, and are held to the traced Newton–Euler τ, an independent path:
+/// `C q̇ + g = τ(q, q̇, 0)`, `g = τ(q, 0, 0)`, `D q̈ = τ(q, q̇, q̈) − τ(q, q̇, 0)`, and the forward
+/// dynamics gives `q̈` back from `τ`.
+#[test]
+fn a_large_robot_is_evaluated_from_its_compact_form() {
+    let n = 9;
+    let dir = std::env::temp_dir().join(format!("symdyn-eval-large-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chain-9.scene");
+    std::fs::write(&path, symdyn::chains::chain_scene(n)).unwrap();
+    let scene = path.to_str().unwrap();
+    let list = |v: &[f64]| {
+        v.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let q: Vec<f64> = (0..n).map(|i| 0.3 + 0.1 * i as f64).collect();
+    let qd: Vec<f64> = (0..n).map(|i| 0.5 - 0.1 * i as f64).collect();
+    let qdd: Vec<f64> = (0..n).map(|i| 0.2 * i as f64 - 0.7).collect();
+    let zero = vec![0.0; n];
+
+    let (out, err, code) = symdyn(&["eval", scene, "--q", &list(&q), "--what", "M"]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert!(err.contains("no value given for I1xx, I1xy"), "{err}");
+    assert!(err.contains("some of them may cancel from τ"), "{err}");
+    // Every parameter, each a distinct value.
+    let names = err["error: no value given for ".len()..]
+        .split(" (")
+        .next()
+        .unwrap()
+        .to_string();
+    let set: String = names
+        .split(", ")
+        .enumerate()
+        .map(|(k, s)| format!("{s}={}/13", k + 3))
+        .collect::<Vec<_>>()
+        .join(",");
+    let eval = |what: &str, qd: &[f64], qdd: &[f64], u: &[f64]| -> Vec<f64> {
+        let mut args = vec![
+            "eval", scene, "--what", what, "--set", &set, "--format", "json",
+        ];
+        let (q, qd, qdd, u) = (list(&q), list(qd), list(qdd), list(u));
+        args.extend(["--q", &q, "--qd", &qd, "--qdd", &qdd]);
+        if what == "qdd" {
+            args.extend(["--u", &u]);
+        }
+        let (out, err, code) = symdyn(&args);
+        assert_eq!((code, err.as_str()), (0, ""), "{what}");
+        let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+        fn flat(v: &serde_json::Value) -> Vec<f64> {
+            match v {
+                serde_json::Value::Array(items) => items.iter().flat_map(flat).collect(),
+                x => vec![x.as_f64().unwrap()],
+            }
+        }
+        flat(&doc["value"])
+    };
+    let tau = eval("tau", &qd, &qdd, &[]);
+    let bias = eval("tau", &qd, &zero, &[]);
+    let gravity = eval("tau", &zero, &zero, &[]);
+    let d = eval("M", &qd, &zero, &[]);
+    let c = eval("C", &qd, &zero, &[]);
+    let g = eval("g", &zero, &zero, &[]);
+    assert_close(&g, &gravity, 1e-9, "g = τ(q, 0, 0)");
+    let c_qd_g: Vec<f64> = (0..n)
+        .map(|r| (0..n).map(|k| c[r * n + k] * qd[k]).sum::<f64>() + g[r])
+        .collect();
+    assert_close(&c_qd_g, &bias, 1e-9, "C q̇ + g = τ(q, q̇, 0)");
+    let d_qdd: Vec<f64> = (0..n)
+        .map(|r| (0..n).map(|k| d[r * n + k] * qdd[k]).sum::<f64>())
+        .collect();
+    let diff: Vec<f64> = tau.iter().zip(&bias).map(|(a, b)| a - b).collect();
+    assert_close(&d_qdd, &diff, 1e-9, "D q̈ = τ − τ(q̈ = 0)");
+    let back = eval("qdd", &qd, &zero, &tau);
+    assert_close(&back, &qdd, 1e-7, "q̈ from τ");
+    std::fs::remove_dir_all(&dir).ok();
+
+    // Exact values need the expanded equations: the 12-joint chain is refused before expanding.
+    let path = dir.join("chain-12.scene");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(&path, symdyn::chains::chain_scene(12)).unwrap();
+    let (out, err, code) = symdyn(&[
+        "eval",
+        path.to_str().unwrap(),
+        "--q",
+        &list(&[0.0; 12]),
+        "--what",
+        "g",
+        "--exact",
+    ]);
+    assert_eq!((code, out.as_str()), (1, ""));
+    assert!(err.contains("--exact evaluates the expanded equations, but the expanded d11 of D(q) alone passes 300000 terms"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

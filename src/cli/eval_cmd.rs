@@ -3,8 +3,11 @@
 //! Newton–Euler program) or exactly.
 
 use super::CliError;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use symdyn::algebra::{eval_f64, Expr, Poly, Rational, Symbol};
+use symdyn::codegen::eval::Compiled;
+use symdyn::codegen::What as Cg;
+use symdyn::dynamics::EXPANSION_LIMIT;
 use symdyn::numeric::{self, NumericError};
 use symdyn::parse::parse_expr;
 
@@ -75,7 +78,9 @@ fn input(msg: impl std::fmt::Display) -> CliError {
 
 fn numeric(e: NumericError) -> CliError {
     match e {
-        NumericError::Missing(_) => input(format!("{e} (use --set name=value,...)")),
+        NumericError::Missing(_) | NumericError::MissingOrUnused(_) => {
+            input(format!("{e} (use --set name=value,...)"))
+        }
         _ => input(e),
     }
 }
@@ -177,6 +182,49 @@ fn flat(m: &[Vec<Poly>]) -> Vec<Poly> {
     m.iter().flatten().cloned().collect()
 }
 
+/// `D(q)`, `C(q, q̇)`, `g(q)` or `q̈` in `f64` from the compact form, for a robot whose expanded
+/// equations take too long to derive: the functions `symdyn codegen` generates, evaluated in process
+/// ([`Compiled`]), with `set` folded in exactly. Every parameter they name must have a value (which
+/// of them cancel would take the expansion to tell). The forward dynamics solves `D q̈ = u − h` as
+/// the expanded path does ([`numeric::forward_dynamics`], with `κ(D)`).
+fn from_compact(
+    robot: &symdyn::dynamics::Robot,
+    set: &BTreeMap<Symbol, Expr>,
+    what: What,
+    (q, qd, u): (&[f64], &[f64], &[f64]),
+) -> Result<(Vec<f64>, Option<f64>), CliError> {
+    let quantities: &[Cg] = match what {
+        What::M => &[Cg::M],
+        What::C => &[Cg::C],
+        What::G => &[Cg::G],
+        What::Qdd => &[Cg::M, Cg::H],
+        What::Tau => &[Cg::Tau],
+    };
+    let mut compiled = Compiled::new(robot, set, quantities).map_err(input)?;
+    if !compiled.parameters().is_empty() {
+        return Err(numeric(NumericError::MissingOrUnused(
+            compiled.parameters().to_vec(),
+        )));
+    }
+    compiled.eval(&[], q, qd, &[], u);
+    let out = |w: Cg| compiled.output(w).unwrap_or_default();
+    if what != What::Qdd {
+        return Ok((out(quantities[0]), None));
+    }
+    let n = robot.dof();
+    let d = nalgebra::DMatrix::from_row_slice(n, n, &out(Cg::M));
+    let h = out(Cg::H);
+    let rhs = nalgebra::DVector::from_iterator(n, u.iter().zip(&h).map(|(a, b)| a - b));
+    if let Some((i, x)) = rhs.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Err(numeric(NumericError::NotFinite {
+            what: format!("u{} − (C q̇ + g){}", i + 1, i + 1),
+            value: *x,
+        }));
+    }
+    let (x, cond) = numeric::forward_dynamics(&d, &rhs).map_err(numeric)?;
+    Ok((x.iter().copied().collect(), Some(cond)))
+}
+
 /// `symdyn eval`.
 pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
     let der = super::derive_cmds::load(args.scene)?;
@@ -217,15 +265,26 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
         floats(&u),
     );
 
-    let lag = der.lagrange();
+    // The expanded Euler–Lagrange quantities, derived only on the paths that read them: τ in floating
+    // point comes from the traced Newton–Euler program, which a large robot reaches in milliseconds
+    // where its expanded derivation takes minutes.
+    let lag = || der.lagrange();
     let labels =
         |prefix: &str| -> Vec<String> { (1..=n).map(|i| format!("{prefix}{i}")).collect() };
-    let (polys, shape): (Vec<Poly>, Shape) = match what {
-        What::Tau => (lag.tau.to_vec(), Shape::Vector(robot.inputs.clone())),
-        What::M => (flat(&lag.d), Shape::Matrix(n)),
-        What::C => (flat(&lag.c), Shape::Matrix(n)),
-        What::G => (lag.g.clone(), Shape::Vector(labels("g"))),
-        What::Qdd => (Vec::new(), Shape::Vector(labels("qdd"))),
+    let shape = match what {
+        What::Tau => Shape::Vector(robot.inputs.clone()),
+        What::M | What::C => Shape::Matrix(n),
+        What::G => Shape::Vector(labels("g")),
+        What::Qdd => Shape::Vector(labels("qdd")),
+    };
+    let polys = || -> Vec<Poly> {
+        match what {
+            What::Tau => lag().tau.to_vec(),
+            What::M => flat(&lag().d),
+            What::C => flat(&lag().c),
+            What::G => lag().g.clone(),
+            What::Qdd => Vec::new(),
+        }
     };
     let entry_labels: Vec<String> = match &shape {
         Shape::Vector(l) => l.clone(),
@@ -238,6 +297,15 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
     };
 
     let result = if args.exact {
+        // Exact values come from the expanded equations: refuse a robot too large to expand.
+        if robot.dof() >= 8 {
+            if let Err(e) = der.expansion_fits(EXPANSION_LIMIT) {
+                return Err(input(format!(
+                    "--exact evaluates the expanded equations, but {e}: too large to expand; drop \
+                     --exact for f64 values from the compact form"
+                )));
+            }
+        }
         let mut values: HashMap<Symbol, Expr> = params
             .iter()
             .map(|(s, e, _)| (s.clone(), e.clone()))
@@ -253,11 +321,11 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
             }
         }
         if what == What::Qdd {
-            let d = numeric::exact_values(&flat(&lag.d), &values).map_err(numeric)?;
+            let d = numeric::exact_values(&flat(&lag().d), &values).map_err(numeric)?;
             for i in 1..=n as u32 {
                 values.insert(Symbol::qdd(i), Expr::zero());
             }
-            let h = numeric::exact_values(&lag.tau, &values).map_err(numeric)?;
+            let h = numeric::exact_values(&lag().tau, &values).map_err(numeric)?;
             let d_labels: Vec<String> = (0..n * n)
                 .map(|k| format!("D{}{}", k / n + 1, k % n + 1))
                 .collect();
@@ -277,7 +345,7 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
                 cond: Some(cond),
             }
         } else {
-            let v = numeric::exact_values(&polys, &values).map_err(numeric)?;
+            let v = numeric::exact_values(&polys(), &values).map_err(numeric)?;
             let x = numeric::rationals(&v, &entry_labels).map_err(numeric)?;
             Result_ {
                 shape,
@@ -288,8 +356,14 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
         }
     } else {
         let pf: HashMap<Symbol, f64> = params.iter().map(|(s, _, x)| (s.clone(), *x)).collect();
-        let (values, cond) = if what == What::Qdd {
-            let mut dynamics = numeric::Dynamics::new(lag, &pf).map_err(numeric)?;
+        let (values, cond) = if what != What::Tau && !der.expands_quickly() {
+            let set: BTreeMap<Symbol, Expr> = params
+                .iter()
+                .map(|(s, e, _)| (s.clone(), e.clone()))
+                .collect();
+            from_compact(robot, &set, what, (&qf, &qdf, &uf))?
+        } else if what == What::Qdd {
+            let mut dynamics = numeric::Dynamics::new(lag(), &pf).map_err(numeric)?;
             let (x, cond) = dynamics.qdd(&qf, &qdf, &uf).map_err(numeric)?;
             (x, Some(cond))
         } else if what == What::Tau {
@@ -298,7 +372,7 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
             let out = prog.eval(&qf, &qdf, &qddf).map_err(numeric)?;
             (out.to_vec(), None)
         } else {
-            let mut ev = numeric::compile(&polys, n)
+            let mut ev = numeric::compile(&polys(), n)
                 .and_then(|t| t.bind(&pf))
                 .map_err(numeric)?;
             let out = ev.eval(&qf, &qdf, &qddf).map_err(numeric)?;

@@ -20,6 +20,11 @@ use std::sync::{Arc, OnceLock};
 /// 582,882 at twelve, whose expanded Christoffel symbols pass 16 GB.
 pub const EXPANSION_LIMIT: usize = 300_000;
 
+/// The largest entry of the expanded `D(q)`, in terms, for which the expanded derivation is quick
+/// (the all-symbolic 8-joint chain's `d11`: 12,854 terms, the whole derivation 0.5 s). Past it, the
+/// numeric commands work from the compact form ([`Derivation::expansion_fits`] decides).
+pub const QUICK_EXPANSION: usize = 20_000;
+
 /// A robot whose expanded equations are too large to derive and print.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("the expanded {entry} of D(q) alone passes {limit} terms")]
@@ -186,6 +191,13 @@ impl Derivation {
             }
         }
         Ok(())
+    }
+
+    /// Whether the expanded Euler–Lagrange derivation is quick ([`QUICK_EXPANSION`]): measured on the
+    /// compact form from eight joints; below, every scene is (the generic all-symbolic chain of seven
+    /// joints has a `d11` of about 5,000 terms) and the measurement would only add time.
+    pub fn expands_quickly(&self) -> bool {
+        self.robot.dof() < 8 || self.expansion_fits(QUICK_EXPANSION).is_ok()
     }
 
     /// Every quantity in compact form (named intermediates): `D` by composite rigid bodies, the

@@ -29,6 +29,13 @@ pub enum NumericError {
     /// Parameters without a value, sorted.
     #[error("no value given for {}", .0.iter().map(|s| s.ascii_name()).collect::<Vec<_>>().join(", "))]
     Missing(Vec<Symbol>),
+    /// Parameters without a value, sorted, of a robot too large to expand to tell which of them
+    /// cancel from `τ` (a tensor's moment about an axis its link never turns about): every parameter
+    /// the recursion names, a value for each doing no harm.
+    #[error("no value given for {} (some of them may cancel from τ: the robot is too large to expand \
+        to tell, and a value for each does no harm)",
+        .0.iter().map(|s| s.ascii_name()).collect::<Vec<_>>().join(", "))]
+    MissingOrUnused(Vec<Symbol>),
     /// A state vector of the wrong length.
     #[error("{what} has {got} value{}, the robot has {expected} joint{}: give {expected}",
         plural(.got), plural(.expected))]

@@ -168,6 +168,12 @@ fn bound_values(
     if unbound.is_empty() {
         return Ok(values);
     }
+    // Which of them τ needs is read off the expanded τ while it derives quickly
+    // (`Derivation::expands_quickly`; at twelve joints the expanded derivation would take minutes
+    // and tens of gigabytes): beyond, all of them are asked for.
+    if !der.expands_quickly() {
+        return Err(NumericError::MissingOrUnused(unbound.into_iter().collect()));
+    }
     let needed = parameters(der.lagrange().tau.iter());
     let missing: Vec<Symbol> = needed
         .into_iter()
