@@ -120,22 +120,18 @@ pub(super) fn leave(der: Derivation) {
     std::mem::forget(der);
 }
 
-/// The joints from which `derive` measures a scene before expanding it. Below them every scene
-/// expands within [`EXPANSION_LIMIT`] with room to spare (the generic all-symbolic chain of seven
-/// joints has a `d11` of about 5,000 terms) and the measurement would only add time.
-const MEASURED_FROM: usize = 8;
-
-/// Refuses a scene whose expanded equations would pass `limit` (default [`EXPANSION_LIMIT`], 0 for
-/// none) terms in an entry of `D(q)`, before any of it is expanded ([`Derivation::expansion_fits`]),
+/// Refuses a scene whose expanded equations would pass `limit` (default [`EXPANSION_LIMIT`], measured
+/// from [`symdyn::dynamics::MEASURED_FROM`] joints; 0 for none) terms in an entry of `D(q)`, before
+/// any of it is expanded ([`Derivation::expansion_fits`]),
 /// with the advice to print the compact form. Such a derivation takes minutes and tens of gigabytes,
 /// or runs out of memory, and prints gigabytes of text nobody reads.
 fn fits(der: &Derivation, scene: Option<&str>, limit: Option<usize>) -> Result<(), CliError> {
-    let measure = limit.is_some() || der.robot().dof() >= MEASURED_FROM;
-    let limit = limit.unwrap_or(EXPANSION_LIMIT);
-    if !measure || limit == 0 {
-        return Ok(());
-    }
-    der.expansion_fits(limit).map_err(|e| {
+    let fits = match limit {
+        Some(0) => Ok(()),
+        Some(limit) => der.expansion_fits(limit),
+        None => der.measured_fits(EXPANSION_LIMIT),
+    };
+    fits.map_err(|e| {
         CliError::Input(format!(
             "error: {}: {e}, too large to expand and print ({} joints). Use `symdyn derive \
              --compact` for every quantity over named intermediates, `symdyn check` for the proofs, \

@@ -186,7 +186,7 @@ fn flat(m: &[Vec<Poly>]) -> Vec<Poly> {
 /// equations take too long to derive: the functions `symdyn codegen` generates, evaluated in process
 /// ([`Compiled`]), with `set` folded in exactly. Every parameter they name must have a value (which
 /// of them cancel would take the expansion to tell). The forward dynamics solves `D q̈ = u − h` as
-/// the expanded path does ([`numeric::forward_dynamics`], with `κ(D)`).
+/// the expanded path does ([`numeric::solve`], with `κ(D)`).
 fn from_compact(
     robot: &symdyn::dynamics::Robot,
     set: &BTreeMap<Symbol, Expr>,
@@ -213,16 +213,9 @@ fn from_compact(
     }
     let n = robot.dof();
     let d = nalgebra::DMatrix::from_row_slice(n, n, &out(Cg::M));
-    let h = out(Cg::H);
-    let rhs = nalgebra::DVector::from_iterator(n, u.iter().zip(&h).map(|(a, b)| a - b));
-    if let Some((i, x)) = rhs.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-        return Err(numeric(NumericError::NotFinite {
-            what: format!("u{} − (C q̇ + g){}", i + 1, i + 1),
-            value: *x,
-        }));
-    }
-    let (x, cond) = numeric::forward_dynamics(&d, &rhs).map_err(numeric)?;
-    Ok((x.iter().copied().collect(), Some(cond)))
+    let h = nalgebra::DVector::from_vec(out(Cg::H));
+    let (x, cond) = numeric::solve(&d, &h, u).map_err(numeric)?;
+    Ok((x, Some(cond)))
 }
 
 /// `symdyn eval`.
@@ -298,13 +291,11 @@ pub fn eval(args: EvalArgs<'_>) -> Result<String, CliError> {
 
     let result = if args.exact {
         // Exact values come from the expanded equations: refuse a robot too large to expand.
-        if robot.dof() >= 8 {
-            if let Err(e) = der.expansion_fits(EXPANSION_LIMIT) {
-                return Err(input(format!(
-                    "--exact evaluates the expanded equations, but {e}: too large to expand; drop \
-                     --exact for f64 values from the compact form"
-                )));
-            }
+        if let Err(e) = der.measured_fits(EXPANSION_LIMIT) {
+            return Err(input(format!(
+                "--exact evaluates the expanded equations, but {e}: too large to expand; drop \
+                 --exact for f64 values from the compact form"
+            )));
         }
         let mut values: HashMap<Symbol, Expr> = params
             .iter()

@@ -25,6 +25,12 @@ pub const EXPANSION_LIMIT: usize = 300_000;
 /// numeric commands work from the compact form ([`Derivation::expansion_fits`] decides).
 pub const QUICK_EXPANSION: usize = 20_000;
 
+/// The joints from which a robot's expansion is measured before it is expanded
+/// ([`Derivation::measured_fits`]). Below them every scene expands quickly and within
+/// [`EXPANSION_LIMIT`] (the generic all-symbolic chain of seven joints has a `d11` of about 5,000
+/// terms), and the measurement would only add time.
+pub const MEASURED_FROM: usize = 8;
+
 /// A robot whose expanded equations are too large to derive and print.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("the expanded {entry} of D(q) alone passes {limit} terms")]
@@ -193,11 +199,19 @@ impl Derivation {
         Ok(())
     }
 
-    /// Whether the expanded Euler–Lagrange derivation is quick ([`QUICK_EXPANSION`]): measured on the
-    /// compact form from eight joints; below, every scene is (the generic all-symbolic chain of seven
-    /// joints has a `d11` of about 5,000 terms) and the measurement would only add time.
+    /// [`Derivation::expansion_fits`] for a robot of [`MEASURED_FROM`] joints or more; below, `Ok` at
+    /// once.
+    pub fn measured_fits(&self, limit: usize) -> Result<(), TooLarge> {
+        if self.robot.dof() < MEASURED_FROM {
+            return Ok(());
+        }
+        self.expansion_fits(limit)
+    }
+
+    /// Whether the expanded Euler–Lagrange derivation is quick ([`QUICK_EXPANSION`], measured from
+    /// [`MEASURED_FROM`] joints).
     pub fn expands_quickly(&self) -> bool {
-        self.robot.dof() < 8 || self.expansion_fits(QUICK_EXPANSION).is_ok()
+        self.measured_fits(QUICK_EXPANSION).is_ok()
     }
 
     /// Every quantity in compact form (named intermediates): `D` by composite rigid bodies, the

@@ -29,6 +29,8 @@ pub mod plausibility;
 pub mod scalar;
 pub mod vec3;
 
-pub use derivation::{Derivation, Equation, TooLarge, EXPANSION_LIMIT, QUICK_EXPANSION};
+pub use derivation::{
+    Derivation, Equation, TooLarge, EXPANSION_LIMIT, MEASURED_FROM, QUICK_EXPANSION,
+};
 pub use model::{Convention, Drive, Joint, JointKind, Link, Placement, Robot};
 pub use ne_symbolic::Frame;

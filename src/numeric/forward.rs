@@ -106,16 +106,26 @@ impl Dynamics {
             });
         }
         let (d, h) = self.mass_and_bias(q, qd)?;
-        let rhs = DVector::from_column_slice(u) - h;
-        if let Some((i, x)) = rhs.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-            return Err(NumericError::NotFinite {
-                what: format!("u{} − (C q̇ + g){}", i + 1, i + 1),
-                value: *x,
-            });
-        }
-        let (qdd, cond) = forward_dynamics(&d, &rhs)?;
-        Ok((qdd.iter().copied().collect(), cond))
+        solve(&d, &h, u)
     }
+}
+
+/// `q̈ = D⁻¹ (u − h)` and `κ(D)` from `D(q)` and `h = C q̇ + g` however computed, refusing a
+/// non-finite `u − h` by name ([`forward_dynamics`] checks `D`).
+pub fn solve(
+    d: &DMatrix<f64>,
+    h: &DVector<f64>,
+    u: &[f64],
+) -> Result<(Vec<f64>, f64), NumericError> {
+    let rhs = DVector::from_column_slice(u) - h;
+    if let Some((i, x)) = rhs.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Err(NumericError::NotFinite {
+            what: format!("u{} − (C q̇ + g){}", i + 1, i + 1),
+            value: *x,
+        });
+    }
+    let (qdd, cond) = forward_dynamics(d, &rhs)?;
+    Ok((qdd.iter().copied().collect(), cond))
 }
 
 #[cfg(test)]

@@ -14,7 +14,7 @@ pub mod tape;
 pub mod trace;
 
 pub use exact::{exact_forward_dynamics, exact_values, rationals};
-pub use forward::{condition_number, forward_dynamics, Dynamics, COND_LIMIT};
+pub use forward::{condition_number, forward_dynamics, solve, Dynamics, COND_LIMIT};
 pub use program::{compile_tau, TauProgram};
 pub use tape::{compile, Evaluator, Tape};
 
