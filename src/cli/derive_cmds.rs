@@ -122,9 +122,9 @@ pub(super) fn leave(der: Derivation) {
 
 /// Refuses a scene whose expanded equations would pass `limit` (default [`EXPANSION_LIMIT`], measured
 /// from [`symdyn::dynamics::MEASURED_FROM`] joints; 0 for none) terms in an entry of `D(q)`, before
-/// any of it is expanded ([`Derivation::expansion_fits`]),
-/// with the advice to print the compact form. Such a derivation takes minutes and tens of gigabytes,
-/// or runs out of memory, and prints gigabytes of text nobody reads.
+/// any of it is expanded ([`Derivation::expansion_fits`]), with the advice to print the compact form.
+/// Such a derivation takes minutes and tens of gigabytes, or runs out of memory, and prints gigabytes
+/// of text nobody reads.
 fn fits(der: &Derivation, scene: Option<&str>, limit: Option<usize>) -> Result<(), CliError> {
     let fits = match limit {
         Some(0) => Ok(()),

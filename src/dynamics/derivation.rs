@@ -22,7 +22,7 @@ pub const EXPANSION_LIMIT: usize = 300_000;
 
 /// The largest entry of the expanded `D(q)`, in terms, for which the expanded derivation is quick
 /// (the all-symbolic 8-joint chain's `d11`: 12,854 terms, the whole derivation 0.5 s). Past it, the
-/// numeric commands work from the compact form ([`Derivation::expansion_fits`] decides).
+/// numeric commands work from the compact form ([`Derivation::expands_quickly`]).
 pub const QUICK_EXPANSION: usize = 20_000;
 
 /// The joints from which a robot's expansion is measured before it is expanded
