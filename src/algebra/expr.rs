@@ -699,6 +699,11 @@ fn param_class(name: &str) -> u8 {
 }
 
 fn cmp_base(a: &Expr, b: &Expr) -> Ordering {
+    // Equal bases are the common case (the factor lists of a sum's terms start alike): told by the
+    // node's hash and shape, without ranking them (a parameter's rank classes its name).
+    if a == b {
+        return Ordering::Equal;
+    }
     let (ra, rb) = (base_rank(a), base_rank(b));
     if ra != rb {
         return ra.cmp(&rb);

@@ -21,6 +21,10 @@ fn split_pi(e: &Expr) -> (Expr, Rational) {
         Kind::Mul(c, fs) if fs.len() == 1 && fs[0].1 == 1 && matches!(fs[0].0.kind(), Kind::Pi) => {
             (Expr::zero(), c.clone())
         }
+        // Most arguments are angles without a multiple of π (`q1 + q2`): kept as they are.
+        Kind::Add(_, ts) if !ts.iter().any(|(t, _)| matches!(t.kind(), Kind::Pi)) => {
+            (e.clone(), Rational::zero())
+        }
         Kind::Add(..) => {
             let mut r = Rational::zero();
             let mut rest = Vec::new();
@@ -78,6 +82,10 @@ pub(crate) fn canonical_fun(f: Func, arg: &Expr) -> Expr {
         if f == Func::Sin {
             sign = -sign;
         }
+    }
+    if r.is_zero() && !x.is_zero() {
+        // No multiple of π to reduce (the common case): what the reduction below gives at once.
+        return Expr::fun_unchecked(f, x).scale(&sign);
     }
     // r mod 2 into [0, 2)
     let two = Rational::int(2);
