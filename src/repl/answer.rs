@@ -14,6 +14,19 @@ use crate::dynamics::Frame;
 use crate::print;
 use crate::report::{self, lhs_terms};
 
+/// The most terms a quantity may have to be shown in house style (tidied); a longer one is shown as
+/// its normal form. Tidying costs about the square of the terms (a 35 000-term entry of the 9-joint
+/// chain's `D` took seconds), and pages of such an entry read no better for it.
+pub(super) const TIDY_TERMS: usize = 2000;
+
+/// The terms of `e` as a sum (1 for anything else).
+fn terms(e: &Expr) -> usize {
+    match e.kind() {
+        crate::algebra::Kind::Add(_, ts) => ts.len(),
+        _ => 1,
+    }
+}
+
 impl Session {
     /// A derived quantity as the user sees it: with the user's variables substituted.
     fn shown(&self, p: &Poly) -> Result<Expr, ReplError> {
@@ -29,32 +42,42 @@ impl Session {
     }
 
     fn entry(&self, p: &Poly) -> Result<Expr, ReplError> {
-        Ok(tidy(&self.shown(p)?))
+        self.tidied(p, tidy)
+    }
+
+    /// `p` shown ([`Session::shown`]) in house style by `tidy` while it has at most
+    /// [`TIDY_TERMS`] terms, as its normal form beyond.
+    pub(super) fn tidied(&self, p: &Poly, tidy: impl Fn(&Expr) -> Expr) -> Result<Expr, ReplError> {
+        let e = self.shown(p)?;
+        Ok(if terms(&e) > TIDY_TERMS { e } else { tidy(&e) })
     }
 
     /// An entry of a Newton–Euler vector: grouped as an equation side is (by `q̈`, by `q̇` products,
-    /// then by trig monomial), kept as one expression.
+    /// then by trig monomial), kept as one expression; its normal form past [`TIDY_TERMS`].
     fn dynamic_entry(&self, p: &Poly) -> Result<Expr, ReplError> {
-        Ok(Expr::sum(lhs_terms(&self.shown_poly(p)?)))
+        let p = self.shown_poly(p)?;
+        Ok(if p.len() > TIDY_TERMS {
+            p.to_expr()
+        } else {
+            Expr::sum(lhs_terms(&p))
+        })
     }
 
     fn inertia_entry(&self, p: &Poly) -> Result<Expr, ReplError> {
-        Ok(tidy_by(&self.shown(p)?, Grouping::Leading))
+        self.tidied(p, |e| tidy_by(e, Grouping::Leading))
     }
 
-    /// The terms of an equation side, in house order.
+    /// An equation side as `symdyn derive` prints it ([`report::lhs_string`]): its terms in house
+    /// order, grouped from the normal form when it is long.
     fn side(&self, p: &Poly) -> Result<String, ReplError> {
-        Ok(print::sum_to_string(
-            &lhs_terms(&self.shown_poly(p)?),
-            self.style,
-        ))
+        Ok(report::lhs_string(&self.shown_poly(p)?, self.style))
     }
 
     /// The value of a scene reference in an expression (`D[1,1]`), checked against the robot, with
     /// the user's variables substituted.
     pub(super) fn reference(&self, r: &Ref) -> Result<Expr, ReplError> {
         self.check(r.text(), 1, &r.indices())?;
-        let l = self.der.lagrange();
+        let l = self.expanded()?.lagrange();
         let p = match *r {
             Ref::D(i, j) => &l.d[i - 1][j - 1],
             Ref::C(i, j) => &l.c[i - 1][j - 1],
@@ -117,7 +140,16 @@ impl Session {
 
     /// The scene queries.
     pub(super) fn query(&self, cmd: &Command) -> Result<String, ReplError> {
-        let der = &self.der;
+        let der = match cmd {
+            // The kinematics, the facts and the inertia of a shape are small at any size.
+            Command::Jv(_)
+            | Command::Jw(_)
+            | Command::T(_)
+            | Command::R(_)
+            | Command::Facts
+            | Command::Inertia(_) => &self.der,
+            _ => self.expanded()?,
+        };
         Ok(match cmd {
             Command::D(None) => self.matrix(self.rows(&der.lagrange().d, Self::inertia_entry)?),
             Command::D(Some((i, j))) => {
@@ -197,13 +229,13 @@ impl Session {
 
     /// Equation `k` (0-based) by Euler–Lagrange: its left side and its input's name.
     fn equation(&self, k: usize) -> Result<(String, String), ReplError> {
-        let der = &self.der;
+        let der = self.expanded()?;
         let input = Expr::sym(Symbol::new(&der.robot().inputs[k]));
         Ok((self.side(&der.lagrange().tau[k])?, self.one(&input)))
     }
 
     fn christoffel_list(&self) -> Result<String, ReplError> {
-        let l = self.der.lagrange();
+        let l = self.expanded()?.lagrange();
         let n = self.dof();
         let mut lines = Vec::new();
         if !l.d_constant {
@@ -237,7 +269,7 @@ impl Session {
     }
 
     fn newton_euler(&self, frame: Frame, q: Quantity, i: usize) -> Result<String, ReplError> {
-        let ne = self.der.newton_euler(frame);
+        let ne = self.expanded()?.newton_euler(frame);
         let k = i - 1;
         match q {
             Quantity::Omega => self.vector(&ne.omega[k]),

@@ -43,6 +43,21 @@ pub enum ReplError {
     /// A command the front end must carry out (reading a file).
     #[error("`{0}` is read by the REPL front end; in the library call `Session::load_scene_text`")]
     FrontEnd(String),
+    /// A query whose expanded answer is too large to derive ([`Derivation::measured_fits`] with
+    /// [`crate::dynamics::EXPANSION_LIMIT`], as `symdyn derive`).
+    ///
+    /// [`Derivation::measured_fits`]: crate::dynamics::Derivation::measured_fits
+    #[error(
+        "{query}: {why}, too large to expand; `symdyn derive --compact` prints every quantity as \
+         named intermediates, `symdyn eval` evaluates them, and `T`, `R`, `Jv`, `Jw`, `regressor` \
+         and `base` still answer here"
+    )]
+    TooLarge {
+        /// The query as typed.
+        query: String,
+        /// Which entry of `D(q)` passed the limit, and the limit.
+        why: crate::dynamics::TooLarge,
+    },
 }
 
 fn suggestion_text(s: &Option<String>) -> String {

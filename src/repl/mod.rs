@@ -25,16 +25,19 @@ pub use complete::word_start;
 pub use error::ReplError;
 
 use crate::algebra::{Expr, Symbol};
-use crate::dynamics::Derivation;
+use crate::dynamics::{Derivation, TooLarge, EXPANSION_LIMIT};
 use crate::parse::urdf::UrdfOptions;
 use crate::parse::{parse_robot, parse_scene, BUILTIN_PPP};
 use crate::print::Style;
+use std::cell::OnceCell;
 use std::collections::BTreeMap;
 
 /// The state of one REPL: the scene, the user's variables, the output format.
 #[derive(Debug)]
 pub struct Session {
     der: Derivation,
+    /// Whether `der`'s expanded derivation fits ([`Session::expanded`]), measured once per scene.
+    fits: OnceCell<Result<(), TooLarge>>,
     vars: BTreeMap<String, (Symbol, Expr)>,
     style: Style,
     /// The line being answered, so that errors in its expressions are located in it.
@@ -71,6 +74,7 @@ impl Session {
         let scene = parse_scene(BUILTIN_PPP).expect("the built-in scene parses");
         Session {
             der: Derivation::new(scene.robot).expect("the built-in scene is valid"),
+            fits: OnceCell::new(),
             vars: BTreeMap::new(),
             style: Style::Text,
             line: String::new(),
@@ -127,7 +131,26 @@ impl Session {
             out.push_str(w);
         }
         self.der = der;
+        self.fits = OnceCell::new();
         Ok(out)
+    }
+
+    /// The derivation, for a query that reads its expanded quantities (`D`, `C`, `g`, the equations,
+    /// Newton–Euler, `D[1,1]` in an expression): refused with [`ReplError::TooLarge`] when they would
+    /// not fit, as `symdyn derive` refuses ([`Derivation::measured_fits`] with [`EXPANSION_LIMIT`]:
+    /// the 12-joint all-symbolic chain, whose expansion passes 16 GB of memory), measured once per
+    /// scene and never by expanding.
+    fn expanded(&self) -> Result<&Derivation, ReplError> {
+        match self
+            .fits
+            .get_or_init(|| self.der.measured_fits(EXPANSION_LIMIT))
+        {
+            Ok(()) => Ok(&self.der),
+            Err(why) => Err(ReplError::TooLarge {
+                query: self.line.clone(),
+                why: why.clone(),
+            }),
+        }
     }
 
     /// Answers one line (not blank, not a comment). The answer has no trailing newline.

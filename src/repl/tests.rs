@@ -130,6 +130,56 @@ fn errors_leave_the_session_running() {
     }
 }
 
+/// A robot too large to expand (the 12-joint all-symbolic chain, whose expansion passes 16 GB) gets
+/// the error `symdyn derive` gives, at once, for every query that would expand it, in an expression
+/// too; its kinematics and facts still answer; loading a small robot lifts the refusal.
+#[test]
+fn a_robot_too_large_to_expand_is_refused_not_expanded() {
+    let mut s = Session::new();
+    let scene = crate::chains::chain_scene(12);
+    s.load_scene_text("chain-12.scene", &scene).unwrap();
+    for query in [
+        "D[1,1]",
+        "g",
+        "eom 1",
+        "ne body tau 1",
+        "simplify D[1,1] - D[2,2]",
+    ] {
+        let err = s.eval(query).unwrap_err();
+        assert!(
+            matches!(&err, ReplError::TooLarge { query: q, why } if q == query && why.entry == "d11"),
+            "{query}: {err:?}"
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("passes 300000 terms") && text.contains("--compact"),
+            "{text}"
+        );
+    }
+    assert!(s.eval("T 1").unwrap().contains("cos(q1)"));
+    assert!(s.eval("facts").is_ok());
+    s.load_scene_text("elbow.scene", include_str!("../../examples/elbow.scene"))
+        .unwrap();
+    assert_eq!(s.eval("D[2,2]").as_deref(), Ok("m2 lc2^2 + I2"));
+}
+
+/// An entry past [`super::answer::TIDY_TERMS`] terms is shown as its normal form, untouched; one
+/// within it in house style.
+#[test]
+fn only_entries_a_person_reads_are_tidied() {
+    let s = Session::new();
+    let tidy = crate::algebra::tidy::tidy;
+    // (x1 + … + x70)² expands to 70 + 70·69/2 = 2485 terms; m1 g + m2 g tidies to (m1 + m2) g.
+    let x = Expr::sum((1..=70).map(|i| Expr::symbol(&format!("x{i}"))));
+    let long = crate::algebra::to_poly(&x.pow(2).unwrap());
+    assert_eq!(long.len(), 2485);
+    assert!(long.len() > super::answer::TIDY_TERMS);
+    assert_eq!(s.tidied(&long, tidy).unwrap(), long.to_expr());
+    let short = crate::algebra::to_poly(&crate::parse::parse_expr("m1*g + m2*g").unwrap());
+    let shown = s.tidied(&short, tidy).unwrap();
+    assert_eq!(crate::print::to_string(&shown, Style::Text), "(m1+m2) g");
+}
+
 #[test]
 fn loading_a_scene_text() {
     let mut s = Session::new();
