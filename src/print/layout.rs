@@ -833,11 +833,18 @@ impl Layout {
         let Kind::Mul(c, factors) = t.kind() else {
             return s;
         };
-        let widest = factors
+        let sums: Vec<(usize, &(Expr, i64))> = factors
             .iter()
             .enumerate()
             .filter(|(_, (b, e))| *e == 1 && matches!(b.kind(), Kind::Add(..)))
-            .max_by_key(|(_, (b, _))| width(&print::to_string(b, Style::Latex)));
+            .collect();
+        // The widest sum, measured only when there is a choice (a term has one sum as a rule).
+        let widest = match sums.len() {
+            0 | 1 => sums.into_iter().next(),
+            _ => sums
+                .into_iter()
+                .max_by_key(|(_, (b, _))| width(&print::to_string(b, Style::Latex))),
+        };
         let Some((index, (sum, _))) = widest else {
             return s;
         };

@@ -100,11 +100,27 @@ const EXPANDED_TERMS: usize = 24;
 /// Whether the sheet shows the dynamics over named intermediates: some entry of `D(q)` is longer
 /// than [`EXPANDED_TERMS`] terms expanded (decided on the compact form, so a large robot is never
 /// expanded to find out).
+///
+/// A robot of at most [`EXPANDED_FIRST`] joints is decided on its expanded `D` instead (the same
+/// entries, so the same answer): the expanded sheet needs it anyway, and the proof thread derives
+/// the compact form meanwhile instead of after it.
 fn compact_mode(der: &Derivation) -> bool {
+    if der.robot().dof() <= EXPANDED_FIRST {
+        return der
+            .mass_matrix()
+            .d
+            .iter()
+            .flatten()
+            .any(|p| p.len() > EXPANDED_TERMS);
+    }
     let cd = der.compact();
     let mut ex = cd.arena.expander(EXPANDED_TERMS);
     !cd.d.iter().flatten().all(|e| ex.expand(e).is_ok())
 }
+
+/// The joints up to which [`compact_mode`] reads the expanded `D(q)` (the SCARA arm's is derived in a
+/// fraction of a millisecond).
+const EXPANDED_FIRST: usize = 4;
 
 /// Where the notation paragraph goes, once the document knows whether it abbreviates.
 const NOTATION: &str = "%%NOTATION%%\n";
