@@ -334,6 +334,16 @@ fn cmp_leads(a: Option<(u32, i32)>, b: Option<(u32, i32)>) -> std::cmp::Ordering
     }
 }
 
+/// A lead as an integer that orders as [`cmp_leads`]: by rank, then the higher power first, no lead
+/// last.
+fn lead_key(lead: Option<(u32, i32)>) -> u64 {
+    match lead {
+        // i32::MAX − e lies in 0..2^32 for every i32 e (a tie with `None` is settled by the lists).
+        Some((r, e)) => (u64::from(r) << 32) | (i64::from(i32::MAX) - i64::from(e)) as u64,
+        None => u64::MAX,
+    }
+}
+
 /// A coefficient's term by its lead: the lead, the range of the rest in a shared buffer, the term's
 /// index.
 type Led = (Option<(u32, i32)>, usize, usize, usize);
@@ -354,10 +364,25 @@ fn grouped(sink: &mut impl Sink, r: &mut Renderer, roles: &[Role], terms: &[Coef
         rest.extend(f.iter().copied().filter(|&x| Some(x) != lead));
         entries.push((lead, start, rest.len(), i));
     }
-    entries.sort_by(|a, b| {
+    let full = |a: &Led, b: &Led| {
         cmp_leads(a.0, b.0)
             .then_with(|| super::poly::cmp_factor_lists(&rest[a.1..a.2], &rest[b.1..b.2]))
-    });
+    };
+    // By the lead and the first eight factors of the rest as integers first
+    // ([`super::poly::prefix_key`]), the whole lists only on a tie: the same order, without walking
+    // two lists for most comparisons. Distinct terms differ in lead or rest, so the order is total.
+    let keys: Option<Vec<(u64, u128)>> = entries
+        .iter()
+        .map(|e| super::poly::prefix_key(&rest[e.1..e.2]).map(|k| (lead_key(e.0), k)))
+        .collect();
+    match keys {
+        Some(keys) => {
+            let mut keyed: Vec<((u64, u128), Led)> = keys.into_iter().zip(entries).collect();
+            keyed.sort_unstable_by(|(k, a), (l, b)| k.cmp(l).then_with(|| full(a, b)));
+            entries = keyed.into_iter().map(|(_, e)| e).collect();
+        }
+        None => entries.sort_by(full),
+    }
     for run in entries.chunk_by(|a, b| a.0 == b.0) {
         match (run[0].0, run.len()) {
             (None, _) => {

@@ -159,7 +159,7 @@ pub(super) fn cmp_factor_lists(a: &[(u32, i32)], b: &[(u32, i32)]) -> Ordering {
 /// The first eight factors of a list as one integer that orders as [`cmp_factor_lists`] orders
 /// them: a byte per rank (plus one, so that a list that ends sorts first) and a byte per exponent
 /// (the higher power first). `None` when a rank or an exponent does not fit its byte.
-fn prefix_key(factors: &[(u32, i32)]) -> Option<u128> {
+pub(super) fn prefix_key(factors: &[(u32, i32)]) -> Option<u128> {
     let mut key = 0u128;
     for (i, &(r, e)) in factors.iter().take(8).enumerate() {
         if r >= 255 || !(-127..=127).contains(&e) {
