@@ -560,6 +560,26 @@ mod tests {
         to_poly(&crate::parse::parse_expr(s).expect("valid expression"))
     }
 
+    /// The integer key of a lead orders leads as [`cmp_leads`] does, wherever keys differ: ranks,
+    /// powers of either sign (the higher first), no lead last.
+    #[test]
+    fn lead_keys_order_as_the_leads() {
+        let mut leads = vec![None];
+        for r in [0, 1, 7, u32::MAX - 1, u32::MAX] {
+            for e in [i32::MIN, -3, -1, 1, 2, i32::MAX] {
+                leads.push(Some((r, e)));
+            }
+        }
+        for &a in &leads {
+            for &b in &leads {
+                let (ka, kb) = (lead_key(a), lead_key(b));
+                if ka != kb {
+                    assert_eq!(ka.cmp(&kb), cmp_leads(a, b), "{a:?} {b:?}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn a_side_written_straight_is_its_display_terms_joined() {
         // Groups of every kind: by acceleration and rate with a parenthesised coefficient, by lead
