@@ -167,12 +167,14 @@ pub fn derive(
         Format::Text => Style::Text,
         _ => Style::Latex,
     };
-    super::output::stdout_with(|out| match format {
+    let written = super::output::stdout_with(|out| match format {
         Format::Json => report::write_json(&der, method, out),
         _ => report::write_equations(&der, method, style, out),
-    })?;
+    });
+    // Let go of it on a closed pipe too (`symdyn derive … | head`), where freeing it would be the
+    // last and longest thing the process does.
     leave(der);
-    Ok(String::new())
+    written.map(|()| String::new())
 }
 
 /// `symdyn derive --compact`: the compact program of the chosen method (Euler–Lagrange: `D`, the
