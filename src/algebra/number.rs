@@ -423,6 +423,13 @@ fn mul_small(a: i64, b: i64, c: i64, d: i64) -> Option<Rational> {
     if a == 0 || c == 0 {
         return Some(Rational::zero());
     }
+    // A factor 1 (a monomial's coefficient, as a rule): the other, already reduced.
+    if c == 1 && d == 1 {
+        return Some(Rational(Repr::Small(a, b)));
+    }
+    if a == 1 && b == 1 {
+        return Some(Rational(Repr::Small(c, d)));
+    }
     if b == 1 && d == 1 {
         if let Some(n) = a.checked_mul(c) {
             return Some(Rational(Repr::Small(n, 1)));
