@@ -158,7 +158,7 @@ impl AngleIdentity {
             (x.funcs == self.first && y.funcs == self.second && y.coeff == &x.coeff * &sign).then(
                 || {
                     let angle = if self.plus { a + b } else { a - b };
-                    Expr::num(x.coeff.clone()) * Expr::fun(self.result, &angle)
+                    Expr::fun(self.result, &angle).scale(&x.coeff)
                 },
             )
         })
