@@ -77,7 +77,7 @@ impl Session {
     /// the user's variables substituted.
     pub(super) fn reference(&self, r: &Ref) -> Result<Expr, ReplError> {
         self.check(r.text(), 1, &r.indices())?;
-        let l = self.expanded()?.lagrange();
+        let l = self.lagrange()?;
         let p = match *r {
             Ref::D(i, j) => &l.d[i - 1][j - 1],
             Ref::C(i, j) => &l.c[i - 1][j - 1],
@@ -140,26 +140,20 @@ impl Session {
 
     /// The scene queries.
     pub(super) fn query(&self, cmd: &Command) -> Result<String, ReplError> {
-        let der = match cmd {
-            // The kinematics, the facts and the inertia of a shape are small at any size.
-            Command::Jv(_)
-            | Command::Jw(_)
-            | Command::T(_)
-            | Command::R(_)
-            | Command::Facts
-            | Command::Inertia(_) => &self.der,
-            _ => self.expanded()?,
-        };
+        // Indices are checked first; the expanded quantities are reached through `self.lagrange()`
+        // and `self.expanded()`, which refuse a robot too large to expand. The kinematics, the facts
+        // and the inertia of a shape are small at any size.
+        let der = &self.der;
         Ok(match cmd {
-            Command::D(None) => self.matrix(self.rows(&der.lagrange().d, Self::inertia_entry)?),
+            Command::D(None) => self.matrix(self.rows(&self.lagrange()?.d, Self::inertia_entry)?),
             Command::D(Some((i, j))) => {
                 self.check(format!("D[{i},{j}]"), 1, &[*i, *j])?;
-                self.one(&self.inertia_entry(&der.lagrange().d[i - 1][j - 1])?)
+                self.one(&self.inertia_entry(&self.lagrange()?.d[i - 1][j - 1])?)
             }
-            Command::C => self.matrix(self.rows(&der.lagrange().c, Self::entry)?),
+            Command::C => self.matrix(self.rows(&self.lagrange()?.c, Self::entry)?),
             Command::Christoffel(Some([i, j, k])) => {
                 self.check(format!("christoffel {i} {j} {k}"), 1, &[*i, *j, *k])?;
-                let l = der.lagrange();
+                let l = self.lagrange()?;
                 if l.d_constant {
                     "0".to_string()
                 } else {
@@ -168,16 +162,16 @@ impl Session {
             }
             Command::Christoffel(None) => self.christoffel_list()?,
             Command::G => {
-                let g: Vec<Expr> = der
-                    .lagrange()
+                let g: Vec<Expr> = self
+                    .lagrange()?
                     .g
                     .iter()
                     .map(|p| self.entry(p))
                     .collect::<Result<_, _>>()?;
                 print::vector_to_string(&g, self.style)
             }
-            Command::P => self.one(&self.entry(&der.lagrange().p)?),
-            Command::K => self.side(&der.lagrange().k)?,
+            Command::P => self.one(&self.entry(&self.lagrange()?.p)?),
+            Command::K => self.side(&self.lagrange()?.k)?,
             Command::Jv(i) => {
                 self.check(format!("Jv {i}"), 1, &[*i])?;
                 self.matrix(self.tidy_rows(columns_to_rows(&der.kinematics().jv[i - 1]))?)
@@ -231,11 +225,11 @@ impl Session {
     fn equation(&self, k: usize) -> Result<(String, String), ReplError> {
         let der = self.expanded()?;
         let input = Expr::sym(Symbol::new(&der.robot().inputs[k]));
-        Ok((self.side(&der.lagrange().tau[k])?, self.one(&input)))
+        Ok((self.side(&self.lagrange()?.tau[k])?, self.one(&input)))
     }
 
     fn christoffel_list(&self) -> Result<String, ReplError> {
-        let l = self.expanded()?.lagrange();
+        let l = self.lagrange()?;
         let n = self.dof();
         let mut lines = Vec::new();
         if !l.d_constant {

@@ -153,6 +153,11 @@ impl Session {
         }
     }
 
+    /// The expanded Euler–Lagrange quantities, through [`Session::expanded`].
+    fn lagrange(&self) -> Result<&crate::dynamics::lagrange::Lagrange, ReplError> {
+        Ok(self.expanded()?.lagrange())
+    }
+
     /// Answers one line (not blank, not a comment). The answer has no trailing newline.
     pub fn eval(&mut self, line: &str) -> Result<String, ReplError> {
         line.trim().clone_into(&mut self.line);

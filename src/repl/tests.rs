@@ -156,6 +156,11 @@ fn a_robot_too_large_to_expand_is_refused_not_expanded() {
             "{text}"
         );
     }
+    // An index out of range is told as such first.
+    assert_eq!(
+        s.eval("D[13,1]").unwrap_err().to_string(),
+        "D[13,1]: the robot has 12 joints"
+    );
     assert!(s.eval("T 1").unwrap().contains("cos(q1)"));
     assert!(s.eval("facts").is_ok());
     s.load_scene_text("elbow.scene", include_str!("../../examples/elbow.scene"))
