@@ -91,17 +91,14 @@ pub fn map<T: Sync, R: Send>(
     // The calling thread only waits: a thread it starts often begins on its core, and would share
     // it for a while if the caller kept working (measured: the numeric PUMA 560's equations took
     // 30% longer in most runs).
-    // The calling thread is one of the workers: a thread fewer to start (on a small virtual machine
-    // starting one costs as much as a small robot's sheet section).
     let mut done: Vec<(usize, R)> = std::thread::scope(|scope| {
-        let helpers: Vec<_> = (1..threads.min(items.len()))
+        let helpers: Vec<_> = (0..threads.min(items.len()))
             .map(|_| scope.spawn(take))
             .collect();
-        let mut done = take();
-        for h in helpers {
-            done.extend(h.join().expect("a worker thread does not panic"));
-        }
-        done
+        helpers
+            .into_iter()
+            .flat_map(|h| h.join().expect("a worker thread does not panic"))
+            .collect()
     });
     done.sort_by_key(|&(i, _)| i);
     done.into_iter().map(|(_, r)| r).collect()
