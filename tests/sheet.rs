@@ -204,6 +204,18 @@ fn every_example_sheet_compiles_on_the_page() {
         if name == "scara" {
             assert!(given.len() >= 10, "the SCARA sheet abbreviates: {given:?}");
         }
+        // Terms that share an abbreviation share one coefficient: `-(m_3 + m_4) \Xi_{13}`, not
+        // `-m_3 \Xi_{13} - m_4 \Xi_{13}` (the SCARA sheet's forces had it before).
+        for row in tex.lines() {
+            let named: Vec<&str> = row.split("\\Xi_{").skip(1).collect();
+            let names: Vec<&str> = named.iter().filter_map(|t| t.split('}').next()).collect();
+            if let Some(n) = names
+                .iter()
+                .find(|n| names.iter().filter(|m| m == n).count() > 1)
+            {
+                problems.push(format!("{name}: \\Xi_{{{n}}} twice in the row {row}"));
+            }
+        }
         let Some(pdflatex) = pdflatex else {
             continue;
         };

@@ -2,7 +2,8 @@
 //! and vectors that are too wide given entry by entry, and single terms that are too wide replaced by
 //! a named abbreviation (`\Xi_{1}`) that is given, broken term by term, right after. The solution
 //! sheet lays out its displays here, and `symdyn derive --format latex` its `align*` of equations
-//! ([`Layout::equations`]).
+//! ([`Layout::equations`]). Terms of a line that have the same sum abbreviated share one coefficient
+//! (`-\left(m_{3}+m_{4}\right) \Xi_{13}`, module `shared`).
 //!
 //! Widths are estimates in "character units" of the LaTeX source: letters, digits and brackets count
 //! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
@@ -19,6 +20,7 @@ use std::hash::Hasher;
 use std::sync::Arc;
 
 mod measured;
+mod shared;
 
 /// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80): the
 /// width every line of a layout stays within (a single factor wider than a line aside).
@@ -576,10 +578,11 @@ impl Layout {
         room: usize,
         later: &mut Vec<(String, Expr)>,
     ) -> Vec<String> {
-        let pieces: Vec<String> = terms
+        let fitted: Vec<shared::Fitted> = terms
             .into_iter()
             .map(|(t, s)| self.fit_term(&t, s, room, later))
             .collect();
+        let pieces = shared::merge(fitted, room, term_string);
         let mut lines: Vec<String> = Vec::new();
         let mut line = String::new();
         let mut used = 0;
@@ -819,19 +822,21 @@ impl Layout {
         );
     }
 
-    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
+    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`
+    /// (then with the term split for [`shared::merge`]).
     fn fit_term(
         &mut self,
         t: &Expr,
         s: String,
         room: usize,
         later: &mut Vec<(String, Expr)>,
-    ) -> String {
+    ) -> shared::Fitted {
+        let as_it_is = |text| shared::Fitted { text, split: None };
         if width(&s) <= room {
-            return s;
+            return as_it_is(s);
         }
         let Kind::Mul(c, factors) = t.kind() else {
-            return s;
+            return as_it_is(s);
         };
         let sums: Vec<(usize, &(Expr, i64))> = factors
             .iter()
@@ -846,7 +851,7 @@ impl Layout {
                 .max_by_key(|(_, (b, _))| width(&print::to_string(b, Style::Latex))),
         };
         let Some((index, (sum, _))) = widest else {
-            return s;
+            return as_it_is(s);
         };
         // A sum named before keeps its name, and is not given again.
         let (number, new) = match self.named.entry(sum.clone()) {
@@ -857,23 +862,27 @@ impl Layout {
             }
         };
         let symbol = Expr::sym(Symbol::new(&format!("Xi{number}")));
-        let rest = factors
-            .iter()
-            .enumerate()
-            .map(|(i, (b, e))| {
-                if i == index {
-                    symbol.clone()
-                } else {
-                    b.pow(*e)
-                        .expect("a factor of a canonical product has a valid power")
-                }
-            })
-            .chain(std::iter::once(Expr::num(c.clone())));
-        let shorter = Expr::product(rest);
+        // The term as `P R`: its coefficient, masses and lengths, and the abbreviation with the rest.
+        let (mut p, mut r) = (vec![Expr::num(c.clone())], vec![symbol.clone()]);
+        for (_, (b, e)) in factors.iter().enumerate().filter(|(i, _)| *i != index) {
+            let power = b
+                .pow(*e)
+                .expect("a factor of a canonical product has a valid power");
+            if shared::is_length(b) {
+                p.push(power);
+            } else {
+                r.push(power);
+            }
+        }
+        let (p, r) = (Expr::product(p), Expr::product(r));
+        let shorter = &p * &r;
         if new {
             later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
         }
-        term_string(&shorter)
+        shared::Fitted {
+            text: term_string(&shorter),
+            split: Some((p, r)),
+        }
     }
 
     /// `lhs = [rows]` as one `bmatrix` when it fits the line, otherwise entry by entry as
