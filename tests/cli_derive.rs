@@ -50,7 +50,9 @@ fn built_in_ppp_by_every_method_and_frame() {
 /// Snapshots reviewed against the mathematics: the elbow arm against Spong's closed form (also
 /// asserted exactly in `tests/elbow.rs`), the RPP arm (D11 holds m1 r1²/2 of the cylinder, the boxes
 /// about the vertical axis and m3 (q3 − lc3)²; the Coriolis and centrifugal terms are ±½ ∂D11/∂q3), the
-/// SCARA (z2 points down: −(m3+m4) g, and I4zz (q̈4 − q̈1 − q̈2) for the reversed last axis).
+/// SCARA (z2 points down: −(m3+m4) g, and I4zz (q̈4 − q̈1 − q̈2) for the reversed last axis; links 3
+/// and 4 sit at the same distance a2 from joint 2, so their masses share one bracket,
+/// (m3+m4) (a1² + 2 a1 a2 cos q2 + a2²), which is m3 (…) + m4 (…) written once).
 #[test]
 fn small_examples_text() {
     for name in ["elbow", "rpp", "scara"] {

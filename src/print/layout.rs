@@ -2,8 +2,7 @@
 //! and vectors that are too wide given entry by entry, and single terms that are too wide replaced by
 //! a named abbreviation (`\Xi_{1}`) that is given, broken term by term, right after. The solution
 //! sheet lays out its displays here, and `symdyn derive --format latex` its `align*` of equations
-//! ([`Layout::equations`]). Terms of a line that have the same sum abbreviated share one coefficient
-//! (`-\left(m_{3}+m_{4}\right) \Xi_{13}`, module `shared`).
+//! ([`Layout::equations`]).
 //!
 //! Widths are estimates in "character units" of the LaTeX source: letters, digits and brackets count
 //! one, `\sin`/`\cos` three, binary operators two, layout commands (`\frac`, `\left`, `\dot`, braces,
@@ -20,7 +19,6 @@ use std::hash::Hasher;
 use std::sync::Arc;
 
 mod measured;
-mod shared;
 
 /// Width of one line of display math, in character units (A4, 2 cm margins, 10 pt: about 80): the
 /// width every line of a layout stays within (a single factor wider than a line aside).
@@ -578,11 +576,10 @@ impl Layout {
         room: usize,
         later: &mut Vec<(String, Expr)>,
     ) -> Vec<String> {
-        let fitted: Vec<shared::Fitted> = terms
+        let pieces: Vec<String> = terms
             .into_iter()
             .map(|(t, s)| self.fit_term(&t, s, room, later))
             .collect();
-        let pieces = shared::merge(fitted, room, term_string);
         let mut lines: Vec<String> = Vec::new();
         let mut line = String::new();
         let mut used = 0;
@@ -822,21 +819,19 @@ impl Layout {
         );
     }
 
-    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`
-    /// (then with the term split for [`shared::merge`]).
+    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
     fn fit_term(
         &mut self,
         t: &Expr,
         s: String,
         room: usize,
         later: &mut Vec<(String, Expr)>,
-    ) -> shared::Fitted {
-        let as_it_is = |text| shared::Fitted { text, split: None };
+    ) -> String {
         if width(&s) <= room {
-            return as_it_is(s);
+            return s;
         }
         let Kind::Mul(c, factors) = t.kind() else {
-            return as_it_is(s);
+            return s;
         };
         let sums: Vec<(usize, &(Expr, i64))> = factors
             .iter()
@@ -851,7 +846,7 @@ impl Layout {
                 .max_by_key(|(_, (b, _))| width(&print::to_string(b, Style::Latex))),
         };
         let Some((index, (sum, _))) = widest else {
-            return as_it_is(s);
+            return s;
         };
         // A sum named before keeps its name, and is not given again.
         let (number, new) = match self.named.entry(sum.clone()) {
@@ -862,27 +857,23 @@ impl Layout {
             }
         };
         let symbol = Expr::sym(Symbol::new(&format!("Xi{number}")));
-        // The term as `P R`: its coefficient, masses and lengths, and the abbreviation with the rest.
-        let (mut p, mut r) = (vec![Expr::num(c.clone())], vec![symbol.clone()]);
-        for (_, (b, e)) in factors.iter().enumerate().filter(|(i, _)| *i != index) {
-            let power = b
-                .pow(*e)
-                .expect("a factor of a canonical product has a valid power");
-            if shared::is_length(b) {
-                p.push(power);
-            } else {
-                r.push(power);
-            }
-        }
-        let (p, r) = (Expr::product(p), Expr::product(r));
-        let shorter = &p * &r;
+        let rest = factors
+            .iter()
+            .enumerate()
+            .map(|(i, (b, e))| {
+                if i == index {
+                    symbol.clone()
+                } else {
+                    b.pow(*e)
+                        .expect("a factor of a canonical product has a valid power")
+                }
+            })
+            .chain(std::iter::once(Expr::num(c.clone())));
+        let shorter = Expr::product(rest);
         if new {
             later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
         }
-        shared::Fitted {
-            text: term_string(&shorter),
-            split: Some((p, r)),
-        }
+        term_string(&shorter)
     }
 
     /// `lhs = [rows]` as one `bmatrix` when it fits the line, otherwise entry by entry as

@@ -11,6 +11,7 @@
 use super::collect::{collect, KeyClass};
 use super::factor::factor_list;
 use super::rates::group_rates;
+use super::share::share_cofactors;
 use crate::algebra::expr::{Expr, Kind};
 use crate::algebra::number::Rational;
 use crate::algebra::symbol::Symbol;
@@ -35,14 +36,19 @@ pub fn group(e: &Expr, grouping: Grouping) -> Expr {
         Grouping::Trig => collect(e, KeyClass::Trig),
         Grouping::Leading => by_leading_param(e),
     };
-    Expr::sum(groups.into_iter().map(|(key, coeff)| {
+    let sum = Expr::sum(groups.into_iter().map(|(key, coeff)| {
         let factors = factor_list(&coeff);
         match grouping {
             Grouping::Trig => Expr::product(factors.into_iter().chain([key])),
             // The vectors of Newton–Euler: their rates as the book writes them.
             Grouping::Leading => Expr::product(factors.iter().map(group_rates).chain([key])),
         }
-    }))
+    }));
+    match grouping {
+        Grouping::Trig => sum,
+        // A force every link beyond a joint carries, once: `−(m3 + m4) (g − q̈3)`.
+        Grouping::Leading => share_cofactors(&sum),
+    }
 }
 
 /// The terms of `e` grouped by their leading parameter: the first parameter factor in canonical order,
