@@ -71,6 +71,9 @@ fn symbols(e: &Expr) -> usize {
     }
 }
 
+/// A term of a group: its `P`, and the term as (monomial, coefficient).
+type Member = (Expr, (Expr, Rational));
+
 /// `e` with the terms that share a rest holding a sum written once: `(Σ P) R`. `e` itself when no two
 /// terms do.
 pub fn share_cofactors(e: &Expr) -> Expr {
@@ -89,7 +92,7 @@ pub fn share_cofactors(e: &Expr) -> Expr {
     // coefficient); the others by their rest R, in the order they come.
     let mut constant = Rational::zero();
     let mut kept: Vec<(Expr, Rational)> = Vec::with_capacity(ts.len());
-    let mut groups: Vec<(Expr, Vec<(Expr, (Expr, Rational))>)> = Vec::new();
+    let mut groups: Vec<(Expr, Vec<Member>)> = Vec::new();
     for (t, c) in e.terms() {
         if t.is_one() {
             constant += &c;
