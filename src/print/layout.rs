@@ -243,6 +243,11 @@ impl PreparedVector {
         });
         PreparedVector { shown, terms }
     }
+
+    /// The components in their display form.
+    pub fn shown(&self) -> &[Expr] {
+        &self.shown
+    }
 }
 
 /// An equation of [`Layout::equations`] printed and measured ahead of the layout: its right side, its

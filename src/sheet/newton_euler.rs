@@ -3,11 +3,13 @@
 //! and torques, and the equations.
 
 use super::layout::{Layout, PreparedVector};
+use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Poly};
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::{Convention, Derivation, Frame, JointKind};
 use crate::print::parallel;
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 
 fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
@@ -51,6 +53,10 @@ fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
 }
 
 /// [`Tidied`] for the sections of `frames` (each vector short enough to print).
+///
+/// A component equal to one met before (`g_i` is the same vector for every link in the inertial
+/// frame; a prismatic arm's `a_c,i` and `a_e,i` often agree) is tidied once: the display form is a
+/// function of the polynomial alone.
 pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
     let jobs: Vec<(Frame, String, &Vec3<Poly>)> = frames
         .iter()
@@ -61,22 +67,82 @@ pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
         })
         .filter(|(_, _, v)| longest(v) <= MAX_TERMS)
         .collect();
+    // For each component of several terms met before, where: (job, component).
+    let mut first: FxHashMap<&Poly, (usize, usize)> = FxHashMap::default();
+    let earlier: Vec<[Option<(usize, usize)>; 3]> = jobs
+        .iter()
+        .enumerate()
+        .map(|(j, (_, _, v))| {
+            std::array::from_fn(|k| {
+                let c = &v.0[k];
+                if c.len() <= 1 {
+                    return None;
+                }
+                match first.entry(c) {
+                    Entry::Occupied(e) => Some(*e.get()),
+                    Entry::Vacant(e) => {
+                        e.insert((j, k));
+                        None
+                    }
+                }
+            })
+        })
+        .collect();
+    let items: Vec<(usize, &(Frame, String, &Vec3<Poly>))> = jobs.iter().enumerate().collect();
     // Tidying costs about the square of a component's terms; below ~100 000 in all, one thread.
-    let shown = parallel::map(
-        &jobs,
-        |(_, _, v)| v.0.iter().map(|c| c.len() * c.len()).sum(),
+    // A vector with every component its own is prepared on the thread that tidied it; one that
+    // repeats a component is prepared after, from the component's first display form.
+    let done = parallel::map(
+        &items,
+        |(_, (_, _, v))| v.0.iter().map(|c| c.len() * c.len()).sum(),
         100_000,
-        |(_, name, v)| {
-            let shown = v.0.iter().map(|c| c.tidy_by(Grouping::Leading)).collect();
-            PreparedVector::new(name, shown)
+        |&(j, (_, name, v))| {
+            let shown: Vec<Option<Expr>> =
+                v.0.iter()
+                    .zip(&earlier[j])
+                    .map(|(c, before)| before.is_none().then(|| c.tidy_by(Grouping::Leading)))
+                    .collect();
+            if shown.iter().all(Option::is_some) {
+                Prepared::Done(PreparedVector::new(
+                    name,
+                    shown.into_iter().flatten().collect(),
+                ))
+            } else {
+                Prepared::Partly(shown)
+            }
         },
     );
+    let mut out: Vec<PreparedVector> = Vec::with_capacity(done.len());
+    for (j, d) in done.into_iter().enumerate() {
+        let vector = match d {
+            Prepared::Done(p) => p,
+            Prepared::Partly(shown) => {
+                let shown = shown
+                    .into_iter()
+                    .zip(&earlier[j])
+                    .map(|(e, before)| match (e, before) {
+                        (Some(e), _) => e,
+                        (None, Some((i, k))) => out[*i].shown()[*k].clone(),
+                        (None, None) => unreachable!("a component is tidied or met before"),
+                    })
+                    .collect();
+                PreparedVector::new(&jobs[j].1, shown)
+            }
+        };
+        out.push(vector);
+    }
     Tidied(
         jobs.into_iter()
-            .zip(shown)
+            .zip(out)
             .map(|((frame, name, _), e)| ((frame, name), e))
             .collect(),
     )
+}
+
+/// A vector tidied on a worker: prepared, or its components tidied except those met before.
+enum Prepared {
+    Done(PreparedVector),
+    Partly(Vec<Option<Expr>>),
 }
 
 /// The most terms of a component of `v`.
@@ -304,4 +370,35 @@ pub(super) fn section(
         "Therefore the equations of motion are\n",
     ));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Tidying each distinct component once gives every vector what tidying it alone gives, on
+    /// arms whose vectors repeat components (the gravity vectors in the inertial frame).
+    #[test]
+    fn components_met_before_are_shown_as_when_tidied_alone() {
+        for name in ["rpp", "scara"] {
+            let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
+            let text = std::fs::read_to_string(&path).unwrap();
+            let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
+            let der = Derivation::new(scene.robot).unwrap();
+            let frames = [Frame::Body, Frame::Inertial];
+            let tidied = tidy_vectors(&der, &frames);
+            let mut seen = std::collections::HashSet::new();
+            let mut repeated = 0;
+            for frame in frames {
+                for (label, v) in vectors(&der, frame) {
+                    let shown = tidied.0[&(frame, label.clone())].shown();
+                    for (c, s) in v.0.iter().zip(shown) {
+                        assert_eq!(&c.tidy_by(Grouping::Leading), s, "{name} {label}");
+                        repeated += usize::from(c.len() > 1 && !seen.insert(c.clone()));
+                    }
+                }
+            }
+            assert!(repeated > 0, "{name}: no component repeats");
+        }
+    }
 }
