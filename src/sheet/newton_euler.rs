@@ -58,7 +58,7 @@ fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
 /// frame; a prismatic arm's `a_c,i` and `a_e,i` often agree) is tidied once: the display form is a
 /// function of the polynomial alone.
 pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
-    let jobs: Vec<(Frame, String, &Vec3<Poly>)> = frames
+    let jobs: Vec<Job> = frames
         .iter()
         .flat_map(|&frame| {
             vectors(der, frame)
@@ -88,7 +88,7 @@ pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
             })
         })
         .collect();
-    let items: Vec<(usize, &(Frame, String, &Vec3<Poly>))> = jobs.iter().enumerate().collect();
+    let items: Vec<(usize, &Job)> = jobs.iter().enumerate().collect();
     // Tidying costs about the square of a component's terms; below ~100 000 in all, one thread.
     // A vector with every component its own is prepared on the thread that tidied it; one that
     // repeats a component is prepared after, from the component's first display form.
@@ -138,6 +138,9 @@ pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
             .collect(),
     )
 }
+
+/// A vector to tidy: its frame, its name and its value.
+type Job<'d> = (Frame, String, &'d Vec3<Poly>);
 
 /// A vector tidied on a worker: prepared, or its components tidied except those met before.
 enum Prepared {
