@@ -223,25 +223,38 @@ fn printed(terms: Vec<Expr>) -> Vec<(Expr, String)> {
 pub struct PreparedVector {
     /// The components.
     shown: Vec<Expr>,
-    /// Each component's terms with their LaTeX, when the vector is laid out component by component.
-    terms: Option<Vec<Vec<(Expr, String)>>>,
+    /// How the vector is laid out, printed.
+    layout: VectorLayout,
+}
+
+/// A [`PreparedVector`]'s layout.
+#[derive(Clone, Debug)]
+enum VectorLayout {
+    /// On one line: each component's LaTeX.
+    Line(Vec<String>),
+    /// Component by component: each component's terms with their LaTeX.
+    Components(Vec<Vec<(Expr, String)>>),
 }
 
 impl PreparedVector {
     /// `lhs = shown` prepared: one line if it fits, else each component term by term.
     pub fn new(lhs: &str, shown: Vec<Expr>) -> PreparedVector {
-        let widest = shown
+        let cells: Vec<String> = shown
             .iter()
-            .map(|e| width(&print::to_string(e, Style::Latex)))
-            .max()
-            .unwrap_or(0);
-        let terms = (width(lhs) + 6 + widest > BUDGET).then(|| {
-            shown
-                .iter()
-                .map(|e| printed(flat_terms(std::slice::from_ref(e))))
-                .collect()
-        });
-        PreparedVector { shown, terms }
+            .map(|e| print::to_string(e, Style::Latex))
+            .collect();
+        let widest = cells.iter().map(|c| width(c)).max().unwrap_or(0);
+        let layout = if width(lhs) + 6 + widest > BUDGET {
+            VectorLayout::Components(
+                shown
+                    .iter()
+                    .map(|e| printed(flat_terms(std::slice::from_ref(e))))
+                    .collect(),
+            )
+        } else {
+            VectorLayout::Line(cells)
+        };
+        PreparedVector { shown, layout }
     }
 
     /// The components in their display form.
@@ -895,22 +908,20 @@ impl Layout {
             .iter()
             .map(|r| r.iter().map(|e| e.tidy_by(grouping)).collect())
             .collect();
-        let cols = shown.first().map_or(0, Vec::len);
-        let col_width: usize = (0..cols)
-            .map(|j| {
-                shown
-                    .iter()
-                    .map(|r| width(&print::to_string(&r[j], Style::Latex)))
-                    .max()
-                    .unwrap_or(0)
-                    + 3
+        let cells: Vec<Vec<String>> = shown
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .map(|e| print::to_string(e, Style::Latex))
+                    .collect()
             })
+            .collect();
+        let cols = cells.first().map_or(0, Vec::len);
+        let col_width: usize = (0..cols)
+            .map(|j| cells.iter().map(|r| width(&r[j])).max().unwrap_or(0) + 3)
             .sum();
         if width(lhs) + 4 + col_width <= BUDGET {
-            return format!(
-                "\\[ {lhs} = {} \\]\n",
-                print::matrix_to_string(&shown, Style::Latex)
-            );
+            return format!("\\[ {lhs} = {} \\]\n", print::latex_matrix_of_cells(&cells));
         }
         let mut out = String::new();
         let zeros = shown
@@ -962,11 +973,15 @@ impl Layout {
         prepared: PreparedVector,
         component: &dyn Fn(usize) -> String,
     ) -> String {
-        let Some(terms) = prepared.terms else {
-            return format!(
-                "\\[ {lhs} = {} \\]\n",
-                print::vector_to_string(&prepared.shown, Style::Latex)
-            );
+        let terms = match prepared.layout {
+            VectorLayout::Line(cells) => {
+                let column: Vec<Vec<String>> = cells.into_iter().map(|c| vec![c]).collect();
+                return format!(
+                    "\\[ {lhs} = {} \\]\n",
+                    print::latex_matrix_of_cells(&column)
+                );
+            }
+            VectorLayout::Components(terms) => terms,
         };
         let mut out = String::new();
         for (k, t) in terms.into_iter().enumerate() {

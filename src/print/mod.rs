@@ -96,11 +96,16 @@ pub fn matrix_to_string(rows: &[Vec<Expr>], style: Style) -> String {
                 .collect();
             format!("[{}]", rows.join(", "))
         }
-        Style::Latex => {
-            let rows: Vec<String> = cells.iter().map(|r| r.join(" & ")).collect();
-            latex::bmatrix(&rows)
-        }
+        Style::Latex => latex_matrix_of_cells(&cells),
     }
+}
+
+/// The LaTeX `bmatrix` of entries already printed ([`to_string`] in [`Style::Latex`]), row by row:
+/// what [`matrix_to_string`] (a one-column matrix: [`vector_to_string`]) prints, for a caller that
+/// printed the entries to measure them.
+pub fn latex_matrix_of_cells(rows: &[Vec<String>]) -> String {
+    let rows: Vec<String> = rows.iter().map(|r| r.join(" & ")).collect();
+    latex::bmatrix(&rows)
 }
 
 /// A column vector. Text: `[a, b, c]ᵀ`; ASCII: `[a, b, c]^T`; LaTeX: a one-column `bmatrix`.
@@ -229,5 +234,38 @@ impl Product {
     /// Whether the coefficient's denominator is 1.
     fn denom_is_one(&self) -> bool {
         self.denom == BigInt::from(1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The `bmatrix` of printed cells is the matrix (and the column vector) printed whole.
+    #[test]
+    fn a_matrix_of_printed_cells_is_the_matrix_printed() {
+        let e = |t: &str| crate::parse::parse_expr(t).unwrap();
+        let rows = vec![
+            vec![e("m1*l1^2/3 + I1"), e("0")],
+            vec![e("-sin(q1 + q2)*qd1"), e("m2")],
+        ];
+        let cells: Vec<Vec<String>> = rows
+            .iter()
+            .map(|r| r.iter().map(|x| to_string(x, Style::Latex)).collect())
+            .collect();
+        assert_eq!(
+            latex_matrix_of_cells(&cells),
+            matrix_to_string(&rows, Style::Latex)
+        );
+        let column: Vec<Vec<String>> = cells.iter().map(|r| vec![r[0].clone()]).collect();
+        let v: Vec<Expr> = rows.iter().map(|r| r[0].clone()).collect();
+        assert_eq!(
+            latex_matrix_of_cells(&column),
+            vector_to_string(&v, Style::Latex)
+        );
+        assert_eq!(
+            latex_matrix_of_cells(&[]),
+            matrix_to_string(&[], Style::Latex)
+        );
     }
 }
