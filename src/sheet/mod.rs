@@ -213,25 +213,29 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
     if clash {
         return (latex.to_string(), false);
     }
+    // Where `\\sin` or `\\cos` starts, in order (found by `memmem`, so the text between them is
+    // copied whole rather than backslash by backslash).
+    let bytes = latex.as_bytes();
+    let mut starts: Vec<usize> = memchr::memmem::find_iter(bytes, b"\\sin")
+        .chain(memchr::memmem::find_iter(bytes, b"\\cos"))
+        .collect();
+    starts.sort_unstable();
     let mut out = String::with_capacity(latex.len());
-    let mut rest = latex;
+    let mut copied = 0;
     let mut any = false;
-    while let Some(at) = rest.find(['\\']) {
-        out.push_str(&rest[..at]);
-        let tail = &rest[at..];
-        match trig_at(tail) {
-            Some((text, used)) => {
-                out.push_str(&text);
-                rest = &tail[used..];
-                any = true;
-            }
-            None => {
-                out.push('\\');
-                rest = &tail[1..];
-            }
+    for at in starts {
+        // A start inside a function already written as its abbreviation is part of it.
+        if at < copied {
+            continue;
+        }
+        if let Some((text, used)) = trig_at(&latex[at..]) {
+            out.push_str(&latex[copied..at]);
+            out.push_str(&text);
+            copied = at + used;
+            any = true;
         }
     }
-    out.push_str(rest);
+    out.push_str(&latex[copied..]);
     (out, any)
 }
 
@@ -418,6 +422,12 @@ mod tests {
             ),
             ("\\sin\\left(2 q_{1}\\right)", "\\sin\\left(2 q_{1}\\right)"),
             ("\\sin \\alpha_{2}", "\\sin \\alpha_{2}"),
+            // Back to back, between other commands, and a longer name that starts alike.
+            ("\\cos q_{1}\\sin q_{2}", "c_{1}s_{2}"),
+            (
+                "\\frac{1}{2} \\cos^{2} q_{3} \\left(a\\right) \\sinh q_{1} \\sin q_{4}",
+                "\\frac{1}{2} c_{3}^{2} \\left(a\\right) \\sinh q_{1} s_{4}",
+            ),
         ] {
             let der = Derivation::new(
                 crate::parse::parse_scene(crate::parse::BUILTIN_PPP)
