@@ -361,6 +361,8 @@ impl Compact {
             memo: FxHashMap::default(),
             over: FxHashMap::default(),
             budget,
+            spent: 0,
+            total: usize::MAX,
         }
     }
 }
@@ -373,6 +375,9 @@ pub struct Expander<'a> {
     /// Names whose expansion went over the budget: every later expansion through them fails at once.
     over: FxHashMap<u32, OverBudget>,
     budget: usize,
+    /// The term products multiplied out so far, and the most all expansions together may.
+    spent: usize,
+    total: usize,
 }
 
 /// How many term products per term of the budget an expansion may multiply out.
@@ -420,9 +425,10 @@ impl Expander<'_> {
     }
 
     /// Whether expanding `p` multiplies out at most [`WORK_PER_TERM`] times the budget in term
-    /// products: past that the expansion is not attempted (its result could still cancel to within
-    /// the budget, but finding out could take gigabytes).
-    fn fits(&self, p: &Poly) -> bool {
+    /// products, and keeps the total within [`Expander::with_total`]: past that the expansion is not
+    /// attempted (its result could still cancel to within the budget, but finding out could take
+    /// gigabytes). The products are counted as spent when it is.
+    fn fits(&mut self, p: &Poly) -> bool {
         let cap = self.budget.saturating_mul(WORK_PER_TERM);
         let mut work = 0usize;
         for (m, _) in p.terms() {
@@ -438,12 +444,29 @@ impl Expander<'_> {
                 return false;
             }
         }
+        let spent = self.spent.saturating_add(work);
+        if spent > self.total {
+            return false;
+        }
+        self.spent = spent;
         true
+    }
+
+    /// The expander with at most `total` term products multiplied out over all its expansions: an
+    /// expansion that would take the total past it fails (what was expanded before stays).
+    pub fn with_total(mut self, total: usize) -> Self {
+        self.total = total;
+        self
+    }
+
+    /// The term products multiplied out so far.
+    pub fn spent(&self) -> usize {
+        self.spent
     }
 
     /// `p` with every name replaced by its (already expanded) value; `None` when that is too much
     /// work ([`Expander::fits`]).
-    fn substitute(&self, p: &Poly) -> Option<Poly> {
+    fn substitute(&mut self, p: &Poly) -> Option<Poly> {
         if !self.fits(p) {
             return None;
         }
@@ -533,5 +556,25 @@ mod tests {
         let err = c.expander(2).expand(&u).unwrap_err();
         assert_eq!(err.name, "t");
         assert_eq!(c.live([&u]), vec![0, 1]);
+    }
+
+    #[test]
+    fn the_total_work_is_kept_over_all_expansions() {
+        let mut c = Compact::new();
+        let s = c.name(p("x + y + z"), "s");
+        let t = c.name(s.mul(&s), "t");
+        let u = t.mul(&t);
+        let mut free = c.expander(1000);
+        assert_eq!(free.expand(&u), Ok(p("(x + y + z)^4")));
+        let spent = free.spent();
+        assert!(spent > 9, "t alone multiplies 3 by 3 terms: {spent}");
+        // Enough for everything, or for t but not for u.
+        let mut enough = c.expander(1000).with_total(spent);
+        assert_eq!(enough.expand(&u), Ok(p("(x + y + z)^4")));
+        let mut short = c.expander(1000).with_total(spent - 1);
+        assert_eq!(short.expand(&t), Ok(p("(x + y + z)^2")));
+        assert!(short.expand(&u).is_err());
+        // What was made before the limit stays made.
+        assert_eq!(short.expand(&t), Ok(p("(x + y + z)^2")));
     }
 }
