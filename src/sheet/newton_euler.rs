@@ -144,7 +144,9 @@ type Job<'d> = (Frame, String, &'d Vec3<Poly>);
 
 /// A vector tidied on a worker: prepared, or its components tidied except those met before.
 enum Prepared {
+    /// Every component was its own: tidied and prepared.
     Done(PreparedVector),
+    /// The components tidied here; `None` for one met before, filled in afterwards.
     Partly(Vec<Option<Expr>>),
 }
 

@@ -46,7 +46,7 @@ pub fn group(e: &Expr, grouping: Grouping) -> Expr {
     }));
     match grouping {
         Grouping::Trig => sum,
-        // A force every link beyond a joint carries, once: `−(m3 + m4) (g − q̈3)`.
+        // A force every link beyond a joint carries, once: `−(m3 + m4) (…)`.
         Grouping::Leading => share_cofactors(&sum),
     }
 }

@@ -24,8 +24,8 @@
 //!   terms, the rest by trig monomial;
 //! - [`rates::group_rates`] (inside [`Grouping::Leading`]): `s12 q̈1 + s12 q̈2` is `s12 (q̈1 + q̈2)`,
 //!   `c12 q̇1² + 2 c12 q̇1 q̇2 + c12 q̇2²` is `c12 (q̇1 + q̇2)²`;
-//! - [`share::share_cofactors`] (after [`Grouping::Leading`]): `−m3 (g − q̈3) − m4 (g − q̈3)` is
-//!   `−(m3 + m4) (g − q̈3)`.
+//! - [`share::share_cofactors`] (after [`Grouping::Leading`]): `−m3 (g − a2 q̈3) − m4 (g − a2 q̈3)`
+//!   is `−(m3 + m4) (g − a2 q̈3)`; a rest of fewer than three symbols stays per mass.
 //!
 //! Rules are named data ([`rule::Rule`], [`contract::ANGLE_IDENTITIES`]) composed by a fixpoint with a
 //! limit; each rule merges two terms into one, so it shrinks the sum. Everything is deterministic:

@@ -1,6 +1,7 @@
 //! Terms that differ only in their masses and lengths share their common part:
-//! `−m3 (g − q̈3) − m4 (g − q̈3)` is `−(m3 + m4) (g − q̈3)`, and
-//! `(q̇1 + q̇2)² I2yz + (q̇1 + q̇2)² I3yz` is `(q̇1 + q̇2)² (I2yz + I3yz)`.
+//! `m3 (a1² + 2 a1 a2 c2 + a2²) + m4 (a1² + 2 a1 a2 c2 + a2²)` is
+//! `(m3 + m4) (a1² + 2 a1 a2 c2 + a2²)`, and `−m3 (g − a2 q̈3) − m4 (g − a2 q̈3)` is
+//! `−(m3 + m4) (g − a2 q̈3)`.
 //!
 //! The grouping by leading parameter ([`super::Grouping::Leading`]) gives each mass its own group, so a
 //! force that every link beyond a joint carries (the SCARA arm's `f_2`) reads once per mass. Here each
@@ -60,6 +61,14 @@ fn worth_sharing(r: &Expr) -> bool {
         && symbols(r) >= SHARED_SYMBOLS
 }
 
+/// Whether the product `t` has a sum among its factors.
+fn has_a_sum_factor(t: &Expr) -> bool {
+    match t.kind() {
+        Kind::Mul(_, fs) => fs.iter().any(|(b, _)| matches!(b.kind(), Kind::Add(..))),
+        _ => false,
+    }
+}
+
 /// The symbols of `e`, each occurrence counted.
 fn symbols(e: &Expr) -> usize {
     match e.kind() {
@@ -81,11 +90,13 @@ pub fn share_cofactors(e: &Expr) -> Expr {
         return e.clone();
     };
     // Most sums have at most one term with a sum factor: passed over without being taken apart.
-    let with_a_sum = ts.iter().filter(|(t, _)| match t.kind() {
-        Kind::Mul(_, fs) => fs.iter().any(|(b, _)| matches!(b.kind(), Kind::Add(..))),
-        _ => false,
-    });
-    if with_a_sum.take(2).count() < 2 {
+    if ts
+        .iter()
+        .filter(|(t, _)| has_a_sum_factor(t))
+        .take(2)
+        .count()
+        < 2
+    {
         return e.clone();
     }
     // The terms that take no part (no sum worth sharing) go back as they stand, as (monomial,
@@ -98,11 +109,7 @@ pub fn share_cofactors(e: &Expr) -> Expr {
             constant += &c;
             continue;
         }
-        let has_sum = match t.kind() {
-            Kind::Mul(_, fs) => fs.iter().any(|(b, _)| matches!(b.kind(), Kind::Add(..))),
-            _ => false,
-        };
-        let split = has_sum.then(|| split(&t, &c));
+        let split = has_a_sum_factor(&t).then(|| split(&t, &c));
         match split {
             Some((p, r)) if worth_sharing(&r) => {
                 match groups.iter_mut().find(|(key, _)| *key == r) {
