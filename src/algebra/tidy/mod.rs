@@ -50,6 +50,8 @@ pub mod square;
 
 #[cfg(test)]
 mod proptests;
+#[cfg(test)]
+mod testing;
 
 pub use collect::{collect, collect_with, KeyClass};
 pub use contract::contract_trig;

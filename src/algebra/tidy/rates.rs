@@ -354,6 +354,7 @@ fn collect_parameters(terms: Vec<Expr>) -> (Vec<Expr>, bool) {
 
 #[cfg(test)]
 mod tests {
+    use super::super::testing::{check_rule, example_components};
     use super::*;
     use crate::algebra::normal::equal;
     use crate::parse::parse_expr;
@@ -362,25 +363,10 @@ mod tests {
     /// as [`super::super::tidy_poly_by`] gives it to the grouping.
     fn example_sums() -> Vec<Expr> {
         let mut out = Vec::new();
-        for name in ["elbow", "rpp", "scara", "elbow_payload"] {
-            let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
-            let text = std::fs::read_to_string(&path).unwrap();
-            let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
-            let der = crate::dynamics::Derivation::new(scene.robot).unwrap();
-            for frame in [
-                crate::dynamics::Frame::Body,
-                crate::dynamics::Frame::Inertial,
-            ] {
-                let ne = der.newton_euler(frame);
-                let vectors = ne.omega.iter().chain(&ne.alpha).chain(&ne.a_c).chain(&ne.f);
-                for v in vectors.chain(ne.n.iter().flatten()) {
-                    for c in &v.0 {
-                        let e = super::super::contract::contract_normal(&c.to_expr());
-                        out.extend(factor_list(&e));
-                        out.push(e);
-                    }
-                }
-            }
+        for c in example_components(&["elbow", "rpp", "scara", "elbow_payload"]) {
+            let e = super::super::contract::contract_normal(&c.to_expr());
+            out.extend(factor_list(&e));
+            out.push(e);
         }
         out
     }
@@ -415,15 +401,7 @@ mod tests {
     }
 
     fn check(input: &str, expected: &str) {
-        let e = parse_expr(input).unwrap();
-        let got = group_rates(&e);
-        let want = parse_expr(expected).unwrap();
-        assert!(equal(&e, &got), "value changed: {input} -> {got:?}");
-        assert_eq!(
-            crate::print::to_string(&got, crate::print::Style::Ascii),
-            crate::print::to_string(&want, crate::print::Style::Ascii),
-            "{input}"
-        );
+        check_rule(group_rates, input, expected);
     }
 
     #[test]

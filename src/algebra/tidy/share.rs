@@ -143,20 +143,13 @@ pub fn share_cofactors(e: &Expr) -> Expr {
 
 #[cfg(test)]
 mod tests {
+    use super::super::testing::{check_rule, example_components};
     use super::*;
     use crate::algebra::normal::equal;
     use crate::parse::parse_expr;
 
     fn check(input: &str, expected: &str) {
-        let e = parse_expr(input).unwrap();
-        let got = share_cofactors(&e);
-        let want = parse_expr(expected).unwrap();
-        assert!(equal(&e, &got), "value changed: {input} -> {got:?}");
-        assert_eq!(
-            crate::print::to_string(&got, crate::print::Style::Ascii),
-            crate::print::to_string(&want, crate::print::Style::Ascii),
-            "{input}"
-        );
+        check_rule(share_cofactors, input, expected);
     }
 
     #[test]
@@ -205,28 +198,14 @@ mod tests {
     #[test]
     fn the_example_vectors_keep_their_value() {
         let mut shared = 0;
-        for name in ["elbow", "rpp", "scara", "elbow_payload", "ppp"] {
-            let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
-            let text = std::fs::read_to_string(&path).unwrap();
-            let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
-            let der = crate::dynamics::Derivation::new(scene.robot).unwrap();
-            for frame in [
-                crate::dynamics::Frame::Body,
-                crate::dynamics::Frame::Inertial,
-            ] {
-                let ne = der.newton_euler(frame);
-                let vectors = ne.omega.iter().chain(&ne.alpha).chain(&ne.a_c).chain(&ne.f);
-                for v in vectors.chain(ne.n.iter().flatten()) {
-                    for c in v.0.iter().filter(|c| c.len() <= 200) {
-                        let e = c.to_expr();
-                        let shown = super::super::tidy_poly_by(c, super::super::Grouping::Leading);
-                        assert!(equal(&e, &shown), "{name}: {e:?} -> {shown:?}");
-                        assert_eq!(share_cofactors(&shown), shown, "{name}: not a fixpoint");
-                        let text = crate::print::to_string(&shown, crate::print::Style::Ascii);
-                        shared += usize::from(text.contains("(m3+m4)"));
-                    }
-                }
-            }
+        let names = ["elbow", "rpp", "scara", "elbow_payload", "ppp"];
+        for c in example_components(&names).iter().filter(|c| c.len() <= 200) {
+            let e = c.to_expr();
+            let shown = super::super::tidy_poly_by(c, super::super::Grouping::Leading);
+            assert!(equal(&e, &shown), "{e:?} -> {shown:?}");
+            assert_eq!(share_cofactors(&shown), shown, "not a fixpoint: {shown:?}");
+            let text = crate::print::to_string(&shown, crate::print::Style::Ascii);
+            shared += usize::from(text.contains("(m3+m4)"));
         }
         assert!(shared > 0, "no component shares a rest");
     }
