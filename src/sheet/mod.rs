@@ -213,7 +213,7 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
     if clash {
         return (latex.to_string(), false);
     }
-    // Where `\\sin` or `\\cos` starts, in order (found by `memmem`, so the text between them is
+    // Where `\sin` or `\cos` starts, in order (found by `memmem`, so the text between them is
     // copied whole rather than backslash by backslash).
     let bytes = latex.as_bytes();
     let mut starts: Vec<usize> = memchr::memmem::find_iter(bytes, b"\\sin")

@@ -33,9 +33,9 @@ pub struct ProofOptions {
     pub budget: usize,
     /// The most term products the exact proofs of one batch multiply out together; the claims
     /// left when it is spent get the randomized proof. Each expansion within the budget is cheap,
-    /// but hundreds of them are not: on the 12-joint chain, `regressor --base` spent 4.8 s
-    /// expanding (6.9 million products) and takes 0.8 s with this limit. The examples' proofs
-    /// spend at most 435 000 (the Panda's), and stay exact.
+    /// but hundreds of them are not: on the 12-joint chain, `regressor --base` took about 5 s,
+    /// nearly all of it expanding (6.9 million products), and takes 0.9 s with this limit. The
+    /// examples' proofs spend at most 435 000 (the Panda's), and stay exact.
     pub work: usize,
     /// The randomized proof's bound on the probability of a wrong "equal": `2^−confidence`.
     pub confidence: u32,
