@@ -205,6 +205,21 @@ pub struct Renderer<'a> {
     dense: Vec<Rendered>,
     /// The other factors rendered so far.
     sparse: Vec<(FactorKey, Rendered)>,
+    /// The factors after the number of the last product written, and their text.
+    last: Tail,
+}
+
+/// The factors after a product's number (`sin(q2)*cos(q2)*qd1`), as [`Renderer::tail`] last wrote
+/// them: the terms of a sum come in the canonical order, so the next one mostly begins with the same
+/// factors, and their text is kept rather than put together again factor by factor.
+#[derive(Debug, Default)]
+struct Tail {
+    /// The factors, each with whether it was guarded.
+    factors: Vec<FactorKey>,
+    /// After each factor: the length of the text up to it, and that text's measure.
+    ends: Vec<(usize, Measure)>,
+    /// The text, the factors joined by the style's separator.
+    text: String,
 }
 
 /// A factor to render: its rank, its exponent, and whether it is guarded.
@@ -249,6 +264,7 @@ impl<'a> Renderer<'a> {
             texts: String::new(),
             dense: vec![Rendered::default(); ranks.atoms.len() * 2 * DENSE_POWERS as usize],
             sparse: Vec::new(),
+            last: Tail::default(),
         }
     }
 
@@ -293,6 +309,50 @@ impl<'a> Renderer<'a> {
         out.push_str(&self.texts[f.start as usize..f.end as usize]);
         m.width += f.width as usize;
         m.spaced |= f.spaced;
+    }
+
+    /// Writes the factors `rest` (non-empty, by rank, after a product's number) into
+    /// [`Renderer::last`]'s text, joined by `sep` (of the given width), and returns that text's
+    /// measure. The factors `rest` begins with that the last product's tail also began with (and
+    /// guarded alike) keep their text; only the others are appended.
+    fn tail(&mut self, rest: &[(u32, i32)], (sep, sep_width): (char, usize)) -> Measure {
+        let latex = self.style == Style::Latex;
+        let ranks = self.ranks;
+        // LaTeX separates a sine or cosine from a following factor that is neither.
+        let guarded = |i: usize| {
+            latex
+                && rest.get(i + 1).is_some_and(|&(next, _)| {
+                    !matches!(atom::class(ranks.atom(next)), Class::Sin | Class::Cos)
+                })
+        };
+        let mut last = std::mem::take(&mut self.last);
+        let shared = last
+            .factors
+            .iter()
+            .zip(rest)
+            .enumerate()
+            .take_while(|&(i, (&(r, e, g), &(r2, e2)))| r == r2 && e == e2 && g == guarded(i))
+            .count();
+        last.factors.truncate(shared);
+        last.ends.truncate(shared);
+        let (end, mut m) = match shared {
+            0 => (0, Measure::default()),
+            k => last.ends[k - 1],
+        };
+        last.text.truncate(end);
+        for (i, &(r, e)) in rest.iter().enumerate().skip(shared) {
+            let g = guarded(i);
+            if i > 0 {
+                last.text.push(sep);
+                m.width += sep_width;
+                m.spaced |= sep == ' ';
+            }
+            self.push_factor(&mut last.text, &mut m, r, e, g);
+            last.factors.push((r, e, g));
+            last.ends.push((last.text.len(), m));
+        }
+        self.last = last;
+        m
     }
 
     /// Renders `base^exp` at the end of `texts` (never empty).
@@ -429,15 +489,14 @@ impl<'a> Renderer<'a> {
             }
         }
         let rest = &factors[numeric..];
-        for (i, &(r, e)) in rest.iter().enumerate() {
-            let guarded = latex
-                && rest.get(i + 1).is_some_and(|&(next, _)| {
-                    !matches!(atom::class(self.ranks.atom(next)), Class::Sin | Class::Cos)
-                });
+        if !rest.is_empty() {
             if out.len() > start {
                 separate(out, &mut m);
             }
-            self.push_factor(out, &mut m, r, e, guarded);
+            let tail = self.tail(rest, (sep, sep_width));
+            out.push_str(&self.last.text);
+            m.width += tail.width;
+            m.spaced |= tail.spaced;
         }
         if out.len() == start {
             out.push('1');
@@ -645,6 +704,50 @@ mod tests {
             products > 40 && spaced > 10,
             "{products} products, {spaced} spaced"
         );
+    }
+
+    #[test]
+    fn a_product_prints_the_same_after_any_other() {
+        // The renderer keeps the factors the last product ended with: a product must print and
+        // measure the same whichever product came before it (sharing no factor, a few, all of
+        // them, with a guard that changes in LaTeX, or a longer list), as on a fresh renderer.
+        let poly = p(
+            "sin(q1)*cos(q2)*m2*qd1 + sin(q1)*cos(q2)*cos(q3) + sin(q1)*cos(q2) \
+             + sin(q1)*m2 + 3/4*sin(q1)*cos(q2)*cos(q3)*qd1^2 + sqrt(2)*pi*sin(q1)*m2 \
+             + m1*lc1^2*qd2 - 2*m1*lc1*qd2 + m1*lc1 + g*m1 + 7/(2*m1)",
+        );
+        let ranks = Ranks::of([&poly]).expect("plain atoms");
+        let lists: Vec<(Vec<(u32, i32)>, &Rational)> = poly
+            .terms()
+            .iter()
+            .map(|(m, c)| {
+                let mut f: Vec<(u32, i32)> = m
+                    .factors()
+                    .iter()
+                    .map(|&(id, e)| (ranks.rank(id), e))
+                    .collect();
+                f.sort_unstable();
+                (f, c)
+            })
+            .collect();
+        assert!(lists.len() > 8);
+        for style in [Style::Text, Style::Ascii, Style::Latex] {
+            let alone = |(f, c): &(Vec<(u32, i32)>, &Rational)| {
+                let mut out = String::new();
+                let m = Renderer::new(&ranks, style).measured_product(&mut out, c, f);
+                (out, m)
+            };
+            let mut shared = Renderer::new(&ranks, style);
+            for a in &lists {
+                for b in &lists {
+                    let mut out = String::new();
+                    shared.measured_product(&mut out, a.1, &a.0);
+                    let mut out = String::new();
+                    let m = shared.measured_product(&mut out, b.1, &b.0);
+                    assert_eq!((out, m), alone(b), "after {:?} in {style:?}", a.0);
+                }
+            }
+        }
     }
 
     #[test]
