@@ -27,9 +27,14 @@ enum Repr {
 
 /// Greatest common divisor of two `u128`s: the `u64` path when both fit, else the binary loop in
 /// 128 bits (no 128-bit division, which is a library call).
+#[inline]
 fn gcd_u128(a: u128, b: u128) -> u128 {
     match (u64::try_from(a), u64::try_from(b)) {
         (Ok(x), Ok(y)) => gcd_u64(x, y) as u128,
+        // One step of Euclid's algorithm brings the wide one below the other (a division by a
+        // 64-bit divisor, where the binary loop would take a step for each bit of the difference).
+        (Err(_), Ok(y)) if y != 0 => gcd_u64(y, (a % b) as u64) as u128,
+        (Ok(x), Err(_)) if x != 0 => gcd_u64(x, (b % a) as u64) as u128,
         _ => binary_gcd(a, b),
     }
 }
@@ -263,12 +268,12 @@ impl Rational {
             // Numerators' gcd over the denominators' lcm, in 128 bits: `b/g · d` < 2¹²⁶, and the
             // quotient is coprime to that lcm (each prime of it divides a denominator, so not both
             // numerators), so only the small-or-big choice is left.
-            let n = gcd_u128(a.unsigned_abs() as u128, c.unsigned_abs() as u128);
+            let n = gcd_u64(a.unsigned_abs(), c.unsigned_abs());
             if n == 0 {
                 return Rational::zero();
             }
-            let (b, d) = (*b as u128, *d as u128);
-            let lcm = b / gcd_u128(b, d) * d;
+            let (b, d) = (*b as u64, *d as u64);
+            let lcm = u128::from(b / gcd_u64(b, d)) * u128::from(d);
             return Rational::from_reduced_i128(n as i128, lcm as i128);
         }
         let n = self.numer().gcd(&other.numer());
@@ -389,6 +394,15 @@ fn gcd_u64(a: u64, b: u64) -> u64 {
     if a == 1 || b == 1 {
         // Integers and unit numerators are most coefficients; the loop would take a step a bit.
         return 1;
+    }
+    // The binary loop takes a step for each bit by which the longer is longer than the other (a
+    // decimal coefficient's `/3125000000000000` times ½: some fifty steps). Past a byte of
+    // difference, one step of Euclid's algorithm (one division) first brings it below the other.
+    if (a | b) >> 16 != 0 {
+        let (small, large) = if a <= b { (a, b) } else { (b, a) };
+        if small != 0 && large.leading_zeros() + 8 < small.leading_zeros() {
+            return binary_gcd(small, large % small);
+        }
     }
     binary_gcd(a, b)
 }
@@ -711,7 +725,7 @@ mod tests {
         }
 
         #[test]
-        fn binary_gcd_of_128_bits(
+        fn gcd_of_128_and_64_bits(
             g in proptest::num::u32::ANY, x in proptest::num::u64::ANY, y in 0u64..1000, k in 0u32..32
         ) {
             // A common factor `g` (up to 63 bits with `k` more twos) times cofactors of any size.
@@ -721,6 +735,11 @@ mod tests {
                 proptest::prop_assert_eq!(gcd_u128(a, b), want);
                 proptest::prop_assert_eq!(gcd_u128(b, a), want);
             }
+            // 64 bits, of any lengths: a small one and a long one take Euclid's step first.
+            let (a, b) = (x >> (k + k), y << k);
+            let want = num_integer::Integer::gcd(&a, &b);
+            proptest::prop_assert_eq!(gcd_u64(a, b), want);
+            proptest::prop_assert_eq!(gcd_u64(b, a), want);
         }
     }
 
