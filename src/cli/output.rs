@@ -19,15 +19,40 @@ pub fn stdout_with(
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
-    write(&mut out)
-        .and_then(|()| out.flush())
-        .map_err(|source| match source.kind() {
-            ErrorKind::BrokenPipe => CliError::StdoutClosed,
-            _ => CliError::Write {
-                path: "<stdout>".to_string(),
-                source,
-            },
-        })
+    // Rust's stdout is line-buffered: it looks for the last line end of everything written (a
+    // large robot's JSON has lines of a megabyte, searched byte by byte). The text here comes in
+    // large pieces and is flushed at the end anyway, so it goes to the file descriptor directly.
+    let written = match unbuffered(&out) {
+        Some(mut file) => out
+            .flush()
+            .and_then(|()| write(&mut file))
+            .and_then(|()| file.flush()),
+        None => write(&mut out).and_then(|()| out.flush()),
+    };
+    written.map_err(|source| match source.kind() {
+        ErrorKind::BrokenPipe => CliError::StdoutClosed,
+        _ => CliError::Write {
+            path: "<stdout>".to_string(),
+            source,
+        },
+    })
+}
+
+/// Standard output's file descriptor, duplicated, to write to without Rust's line buffering;
+/// `None` where that cannot be done (and then the buffered handle is used).
+#[cfg(unix)]
+fn unbuffered(out: &std::io::StdoutLock) -> Option<std::fs::File> {
+    use std::os::fd::AsFd;
+    out.as_fd()
+        .try_clone_to_owned()
+        .ok()
+        .map(std::fs::File::from)
+}
+
+/// Standard output's file descriptor: only on Unix; elsewhere the buffered handle is used.
+#[cfg(not(unix))]
+fn unbuffered(_: &std::io::StdoutLock) -> Option<std::fs::File> {
+    None
 }
 
 /// [`stdout`] of `line` and a line end.
