@@ -602,6 +602,13 @@ mod tests {
         to_poly(&crate::parse::parse_expr(s).expect("valid expression"))
     }
 
+    /// A monomial's factors by rank, as the renderer takes them.
+    fn ranked(ranks: &Ranks, factors: &[(AtomId, i32)]) -> Vec<(u32, i32)> {
+        let mut f: Vec<(u32, i32)> = factors.iter().map(|&(id, e)| (ranks.rank(id), e)).collect();
+        f.sort_unstable();
+        f
+    }
+
     proptest::proptest! {
         /// Sorting by the packed prefix and then the whole lists is the order of
         /// `cmp_factor_lists`: lists longer than eight factors, lists that are prefixes of others,
@@ -683,12 +690,7 @@ mod tests {
                 // Twice over, so the factors come from the renderer's table the second time.
                 for _ in 0..2 {
                     for (m, c) in poly.terms() {
-                        let mut factors: Vec<(u32, i32)> = m
-                            .factors()
-                            .iter()
-                            .map(|&(id, e)| (ranks.rank(id), e))
-                            .collect();
-                        factors.sort_unstable();
+                        let factors = ranked(&ranks, m.factors());
                         let mut out = String::from("x + ");
                         let measured = r.measured_product(&mut out, c, &factors);
                         let text = &out[4..];
@@ -720,15 +722,7 @@ mod tests {
         let lists: Vec<(Vec<(u32, i32)>, &Rational)> = poly
             .terms()
             .iter()
-            .map(|(m, c)| {
-                let mut f: Vec<(u32, i32)> = m
-                    .factors()
-                    .iter()
-                    .map(|&(id, e)| (ranks.rank(id), e))
-                    .collect();
-                f.sort_unstable();
-                (f, c)
-            })
+            .map(|(m, c)| (ranked(&ranks, m.factors()), c))
             .collect();
         assert!(lists.len() > 8);
         for style in [Style::Text, Style::Ascii, Style::Latex] {
