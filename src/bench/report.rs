@@ -273,6 +273,8 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str(
             "print; output discarded), so that printing can never hide behind a fast derivation. ",
         );
+        s.push_str("A robot's commands run in turn, a round at a time, so that each ratio compares processes ");
+        s.push_str("run side by side (on a machine whose speed drifts, medians taken minutes apart would not). ");
         s.push_str("`derive ÷ EL` is the whole `derive` process (Euler–Lagrange, printed in full) in text, LaTeX and JSON ");
         s.push_str("over the expanded Euler–Lagrange derivation alone (D, c_ijk, C, g, τ and K), in process (table above; ");
         s.push_str("`derive` derives what it prints: the equations need D, c_ijk, g and τ, the JSON document C too, ");

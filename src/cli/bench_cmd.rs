@@ -265,56 +265,85 @@ impl Runner {
     /// `runs` of them, or fewer once they have taken `budget` seconds (three at least).
     fn end_to_end(
         &self,
-        (robot, dof): (&str, usize),
+        robot: (&str, usize),
         method: &str,
         args: &[&str],
         runs: usize,
         budget: f64,
     ) -> Record {
-        eprintln!("bench: end to end, symdyn {}", args.join(" "));
-        let mut rec = Record::new(robot, dof, method, Status::Ok);
-        let mut times = Vec::with_capacity(runs);
+        let mut recs = self.end_to_end_rounds(robot, &[(method, args.to_vec())], runs, budget);
+        recs.pop().expect("one record per command")
+    }
+
+    /// [`Runner::end_to_end`] of several commands `(method, ARGS)` taken in turn, a round at a time:
+    /// `runs` rounds, or fewer once they have taken `budget` seconds per command (three at least).
+    /// Each median then spans the same stretch of time as the others, so their ratios (`derive ÷
+    /// check`, `sheet ÷ check`) hold on a machine whose speed drifts while it is measured. A
+    /// command that fails is not run again; its record says why.
+    fn end_to_end_rounds(
+        &self,
+        (robot, dof): (&str, usize),
+        commands: &[(&str, Vec<&str>)],
+        runs: usize,
+        budget: f64,
+    ) -> Vec<Record> {
+        for (_, args) in commands {
+            eprintln!("bench: end to end, symdyn {}", args.join(" "));
+        }
+        let mut recs: Vec<Record> = commands
+            .iter()
+            .map(|(method, _)| Record::new(robot, dof, method, Status::Ok))
+            .collect();
+        let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(runs); commands.len()];
         let started = Instant::now();
-        for i in 0..runs {
-            if i >= 3 && started.elapsed().as_secs_f64() > budget {
+        for round in 0..runs {
+            if round >= 3 && started.elapsed().as_secs_f64() > budget * commands.len() as f64 {
                 break;
             }
-            let start = Instant::now();
-            let status = Command::new(&self.exe)
-                .args(args)
-                .stdin(Stdio::null())
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .status();
-            let t = start.elapsed().as_secs_f64();
-            match status {
-                Ok(s) if s.success() => times.push(t),
-                Ok(s) => {
-                    rec.status = Status::Error;
-                    rec.note = format!("exit status {s}");
-                    return rec;
+            for (((_, args), rec), times) in commands.iter().zip(&mut recs).zip(&mut times) {
+                if rec.status != Status::Ok {
+                    continue;
                 }
-                Err(e) => {
-                    rec.status = Status::Error;
-                    rec.note = format!("cannot start: {e}");
-                    return rec;
+                let start = Instant::now();
+                let status = Command::new(&self.exe)
+                    .args(args)
+                    .stdin(Stdio::null())
+                    .stdout(Stdio::null())
+                    .stderr(Stdio::null())
+                    .status();
+                let t = start.elapsed().as_secs_f64();
+                match status {
+                    Ok(s) if s.success() => times.push(t),
+                    Ok(s) => {
+                        rec.status = Status::Error;
+                        rec.note = format!("exit status {s}");
+                    }
+                    Err(e) => {
+                        rec.status = Status::Error;
+                        rec.note = format!("cannot start: {e}");
+                    }
                 }
             }
         }
-        times.sort_by(f64::total_cmp);
-        rec.seconds = Some(times[times.len() / 2]);
-        rec.calls = Some(times.len() as u64);
-        rec.note = format!(
-            "min {}, max {}{}",
-            symdyn::bench::report::fmt_seconds(times[0]),
-            symdyn::bench::report::fmt_seconds(times[times.len() - 1]),
-            if cfg!(debug_assertions) {
-                "; debug build: not representative"
-            } else {
-                ""
+        for (rec, times) in recs.iter_mut().zip(&mut times) {
+            if rec.status != Status::Ok {
+                continue;
             }
-        );
-        rec
+            times.sort_by(f64::total_cmp);
+            rec.seconds = Some(times[times.len() / 2]);
+            rec.calls = Some(times.len() as u64);
+            rec.note = format!(
+                "min {}, max {}{}",
+                symdyn::bench::report::fmt_seconds(times[0]),
+                symdyn::bench::report::fmt_seconds(times[times.len() - 1]),
+                if cfg!(debug_assertions) {
+                    "; debug build: not representative"
+                } else {
+                    ""
+                }
+            );
+        }
+        recs
     }
 }
 
@@ -828,13 +857,14 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         }
     }
     let spawns = if args.quick { 10 } else { 30 };
-    records.push(runner.end_to_end(("ppp", 3), "e2e-sheet", &["sheet"], spawns, f64::INFINITY));
-    records.push(runner.end_to_end(("ppp", 3), "e2e-check", &["check"], spawns, f64::INFINITY));
-    // The floor: a process that starts and prints one line.
-    records.push(runner.end_to_end(
+    // With the floor: a process that starts and prints one line.
+    records.extend(runner.end_to_end_rounds(
         ("ppp", 3),
-        "e2e-startup",
-        &["--version"],
+        &[
+            ("e2e-sheet", vec!["sheet"]),
+            ("e2e-check", vec!["check"]),
+            ("e2e-startup", vec!["--version"]),
+        ],
         spawns,
         f64::INFINITY,
     ));
@@ -846,7 +876,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         };
         let path = format!("examples/{}", spec.file().unwrap_or_default());
         let dof = spec.robot().map(|r| r.dof()).unwrap_or(0);
-        for (method, cmd) in [
+        let commands = [
             ("e2e-derive-text", vec!["derive", path.as_str()]),
             (
                 "e2e-derive-latex",
@@ -862,9 +892,8 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             ),
             ("e2e-check", vec!["check", path.as_str()]),
             ("e2e-sheet", vec!["sheet", path.as_str()]),
-        ] {
-            records.push(runner.end_to_end((name, dof), method, &cmd, runs, budget));
-        }
+        ];
+        records.extend(runner.end_to_end_rounds((name, dof), &commands, runs, budget));
         records.push(runner.end_to_end(
             (name, dof),
             "e2e-regressor-base",
