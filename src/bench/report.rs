@@ -322,7 +322,7 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             s.push_str(&row);
         }
         if !ppp_e2e.is_empty() {
-            s.push_str("\nThe built-in PPP arm, more processes (target < 5 ms):\n\n");
+            s.push_str("\nThe PPP arm (the built-in scene, also `examples/ppp.scene`), more processes, with `symdyn --version`, the floor of every process (target < 5 ms):\n\n");
             s.push_str("| command | median | processes | note |\n| --- | --- | --- | --- |\n");
             for r in ppp_e2e {
                 s.push_str(&format!(
