@@ -42,6 +42,7 @@ pub mod contract;
 pub mod equation;
 pub mod factor;
 pub mod group;
+pub mod memo;
 pub mod pythagoras;
 pub mod rates;
 pub mod rule;

@@ -23,6 +23,7 @@
 //! as a function; the order of its terms is the canonical one.
 
 use super::factor::factor_list;
+use super::memo::Memo;
 use crate::algebra::expr::{Expr, Kind};
 use crate::algebra::fast_hash::{FxHashMap, FxHashSet, FxHasher};
 use crate::algebra::number::Rational;
@@ -170,8 +171,12 @@ pub fn group_rates(e: &Expr) -> Expr {
     if nothing_to_group(e) {
         return e.clone();
     }
-    grouped(e)
+    GROUPED.get_or(e, grouped)
 }
+
+/// The sums [`group_rates`] has grouped, with their results: the vectors of a Newton–Euler section
+/// repeat a few factors many times (the SCARA arm's sheet groups 60 distinct sums in 178 calls).
+static GROUPED: Memo<Expr, Expr> = Memo::new();
 
 /// [`group_rates`] of a sum with rates, term by term.
 fn grouped(e: &Expr) -> Expr {

@@ -1,0 +1,79 @@
+//! Bounded memos of the pure display rewrites, shared by every thread.
+//!
+//! A sheet tidies the same few sums many times: a link's `(q̇1 + q̇2)² a2 s12 − …` recurs in the
+//! forces and moments of every link before it, and in both frames' equations. Each rule here is a
+//! pure function of its input's structure, so a result from a [`Memo`] is the one the rule would
+//! compute: the display is the same whether or not it came from here, on any number of threads.
+//! A memo forgets everything when it holds [`Memo::LIMIT`] entries, so a long session (the REPL)
+//! never grows it without bound.
+
+use crate::algebra::fast_hash::FxHashMap;
+use std::hash::Hash;
+use std::sync::{LazyLock, Mutex, MutexGuard};
+
+/// A memo of a pure function from `K` to `V`, for a `static`.
+pub struct Memo<K, V>(LazyLock<Mutex<FxHashMap<K, V>>>);
+
+impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
+    /// The most entries a memo holds before it starts again.
+    pub const LIMIT: usize = 4096;
+
+    /// An empty memo.
+    pub const fn new() -> Self {
+        Memo(LazyLock::new(Mutex::default))
+    }
+
+    /// `f(key)`, remembered: computed (outside the lock, so threads never wait for each other's
+    /// work) when the memo does not hold it.
+    pub fn get_or(&self, key: &K, f: impl FnOnce(&K) -> V) -> V {
+        if let Some(v) = self.lock().get(key) {
+            return v.clone();
+        }
+        let v = f(key);
+        let mut map = self.lock();
+        if map.len() >= Self::LIMIT {
+            map.clear();
+        }
+        map.insert(key.clone(), v.clone());
+        v
+    }
+
+    fn lock(&self) -> MutexGuard<'_, FxHashMap<K, V>> {
+        // A thread that panicked while holding the lock left the map whole (inserts are single
+        // calls): its contents stay good.
+        self.0.lock().unwrap_or_else(|p| p.into_inner())
+    }
+}
+
+impl<K: Hash + Eq + Clone, V: Clone> Default for Memo<K, V> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    #[test]
+    fn a_memo_computes_each_key_once_and_forgets_when_full() {
+        static MEMO: Memo<usize, usize> = Memo::new();
+        let calls = AtomicUsize::new(0);
+        let square = |k: &usize| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            k * k
+        };
+        assert_eq!(MEMO.get_or(&7, square), 49);
+        assert_eq!(MEMO.get_or(&7, square), 49);
+        assert_eq!(calls.load(Ordering::Relaxed), 1);
+        for k in 0..Memo::<usize, usize>::LIMIT {
+            MEMO.get_or(&(k + 100), square);
+        }
+        // Full at the limit: the next new key cleared it, so 7 is computed again.
+        assert!(MEMO.lock().len() <= Memo::<usize, usize>::LIMIT);
+        let before = calls.load(Ordering::Relaxed);
+        assert_eq!(MEMO.get_or(&7, square), 49);
+        assert_eq!(calls.load(Ordering::Relaxed), before + 1);
+    }
+}
