@@ -239,20 +239,26 @@ enum VectorLayout {
 impl PreparedVector {
     /// `lhs = shown` prepared: one line if it fits, else each component term by term.
     pub fn new(lhs: &str, shown: Vec<Expr>) -> PreparedVector {
-        let cells: Vec<String> = shown
-            .iter()
-            .map(|e| print::to_string(e, Style::Latex))
-            .collect();
-        let widest = cells.iter().map(|c| width(c)).max().unwrap_or(0);
-        let layout = if width(lhs) + 6 + widest > BUDGET {
+        // The widest cell that fits beside `lhs = `; the first wider one decides, and the cells
+        // after it are never printed whole.
+        let beside = width(lhs) + 6;
+        let mut cells: Vec<String> = Vec::with_capacity(shown.len());
+        let fits = beside <= BUDGET
+            && shown.iter().all(|e| {
+                let cell = print::to_string(e, Style::Latex);
+                let fits = width(&cell) <= BUDGET - beside;
+                cells.push(cell);
+                fits
+            });
+        let layout = if fits {
+            VectorLayout::Line(cells)
+        } else {
             VectorLayout::Components(
                 shown
                     .iter()
                     .map(|e| printed(flat_terms(std::slice::from_ref(e))))
                     .collect(),
             )
-        } else {
-            VectorLayout::Line(cells)
         };
         PreparedVector { shown, layout }
     }

@@ -10,6 +10,7 @@
 
 use super::collect::{collect, KeyClass};
 use super::factor::factor_list;
+use super::memo::Memo;
 use super::rates::group_rates;
 use super::share::share_cofactors;
 use crate::algebra::expr::{Expr, Kind};
@@ -18,7 +19,7 @@ use crate::algebra::symbol::Symbol;
 use std::collections::BTreeMap;
 
 /// How to group the terms of a sum before factoring each group.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Grouping {
     /// By trig monomial: `m1 g cos q1 + m2 g cos q1` is `(m1 + m2) g cos q1`.
     Trig,
@@ -32,6 +33,17 @@ pub enum Grouping {
 /// `m1 g cos(q1) + m2 g cos(q1) + m2 g sin(q2)` by [`Grouping::Trig`] is
 /// `(m1 + m2) g cos(q1) + m2 g sin(q2)`.
 pub fn group(e: &Expr, grouping: Grouping) -> Expr {
+    GROUPED.get_or(&(e.clone(), grouping), |(e, grouping)| {
+        grouped(e, *grouping)
+    })
+}
+
+/// The sums [`group`] has grouped, with their results: a sheet groups some sums more than once (an
+/// equation's side in the Euler–Lagrange section and in both Newton–Euler sections).
+static GROUPED: Memo<(Expr, Grouping), Expr> = Memo::new();
+
+/// [`group`], computed.
+fn grouped(e: &Expr, grouping: Grouping) -> Expr {
     let groups = match grouping {
         Grouping::Trig => collect(e, KeyClass::Trig),
         Grouping::Leading => by_leading_param(e),
