@@ -10,6 +10,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod algebra;
+pub mod allocator;
 pub mod bench;
 pub mod chains;
 pub mod codegen;

@@ -4,9 +4,10 @@
 mod cli;
 
 /// The derivations allocate and free many small nodes (terms, monomials, strings); mimalloc serves
-/// them faster than the system allocator and returns less memory to the OS mid-run (see Cargo.toml).
+/// them faster than the system allocator and returns less memory to the OS mid-run (see Cargo.toml
+/// and [`symdyn::allocator`]).
 #[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+static ALLOCATOR: symdyn::allocator::Mimalloc = symdyn::allocator::Mimalloc;
 
 use std::process::ExitCode;
 
