@@ -600,22 +600,22 @@ impl Layout {
         room: usize,
         later: &mut Vec<(String, Expr)>,
     ) -> Vec<String> {
-        let pieces: Vec<String> = terms
+        let pieces: Vec<(String, usize)> = terms
             .into_iter()
             .map(|(t, s)| self.fit_term(&t, s, room, later))
             .collect();
         let mut lines: Vec<String> = Vec::new();
         let mut line = String::new();
         let mut used = 0;
-        for (i, p) in pieces.iter().enumerate() {
-            let joined = if i == 0 {
-                p.clone()
+        for (i, (p, w)) in pieces.iter().enumerate() {
+            // Joined with its sign: ` - ` is as wide as the `-` it replaces, ` + ` adds a sign.
+            let (sign, body, w) = if i == 0 {
+                ("", p.as_str(), *w)
             } else if let Some(rest) = p.strip_prefix('-') {
-                format!(" - {rest}")
+                (" - ", rest, *w)
             } else {
-                format!(" + {p}")
+                (" + ", p.as_str(), w + 2)
             };
-            let w = width(&joined);
             if !line.is_empty() && used + w > room {
                 let capacity = 2 * line.len();
                 let full = std::mem::replace(&mut line, String::with_capacity(capacity));
@@ -623,7 +623,8 @@ impl Layout {
                 used = 0;
             }
             used += w;
-            line.push_str(&joined);
+            line.push_str(sign);
+            line.push_str(body);
         }
         if pieces.is_empty() {
             line.push('0');
@@ -843,19 +844,21 @@ impl Layout {
         );
     }
 
-    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`.
+    /// One term's LaTeX, with its widest sum factor abbreviated when the term is wider than `room`,
+    /// and its [`width`].
     fn fit_term(
         &mut self,
         t: &Expr,
         s: String,
         room: usize,
         later: &mut Vec<(String, Expr)>,
-    ) -> String {
-        if width(&s) <= room {
-            return s;
+    ) -> (String, usize) {
+        let w = width(&s);
+        if w <= room {
+            return (s, w);
         }
         let Kind::Mul(c, factors) = t.kind() else {
-            return s;
+            return (s, w);
         };
         let sums: Vec<(usize, &(Expr, i64))> = factors
             .iter()
@@ -870,7 +873,7 @@ impl Layout {
                 .max_by_key(|(_, (b, _))| width(&print::to_string(b, Style::Latex))),
         };
         let Some((index, (sum, _))) = widest else {
-            return s;
+            return (s, w);
         };
         // A sum named before keeps its name, and is not given again.
         let (number, new) = match self.named.entry(sum.clone()) {
@@ -897,7 +900,9 @@ impl Layout {
         if new {
             later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
         }
-        term_string(&shorter)
+        let s = term_string(&shorter);
+        let w = width(&s);
+        (s, w)
     }
 
     /// `lhs = [rows]` as one `bmatrix` when it fits the line, otherwise entry by entry as
