@@ -33,14 +33,14 @@ pub enum Grouping {
 /// `m1 g cos(q1) + m2 g cos(q1) + m2 g sin(q2)` by [`Grouping::Trig`] is
 /// `(m1 + m2) g cos(q1) + m2 g sin(q2)`.
 pub fn group(e: &Expr, grouping: Grouping) -> Expr {
-    GROUPED.get_or(&(e.clone(), grouping), |(e, grouping)| {
+    DISPLAYED.get_or(&(e.clone(), grouping), |(e, grouping)| {
         grouped(e, *grouping)
     })
 }
 
 /// The sums [`group`] has grouped, with their results: a sheet groups some sums more than once (an
 /// equation's side in the Euler–Lagrange section and in both Newton–Euler sections).
-static GROUPED: Memo<(Expr, Grouping), Expr> = Memo::new();
+static DISPLAYED: Memo<(Expr, Grouping), Expr> = Memo::new();
 
 /// [`group`], computed.
 fn grouped(e: &Expr, grouping: Grouping) -> Expr {
