@@ -128,30 +128,56 @@ const NOTATION: &str = "%%NOTATION%%\n";
 /// The complete LaTeX document of the solution sheet of `der`.
 pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // The proofs of the last section take about as long as all the others on a large robot, and
-    // depend on nothing they print: they run on a thread of their own meanwhile (unless the display
-    // layer is held to one thread, `parallel::set_threads`, or the robot has fewer than three
-    // revolute joints: the PPP, RPP and elbow arms prove in less time than a thread takes to start).
+    // depend on nothing they print: they run on a thread of their own meanwhile. The display forms
+    // of the Newton–Euler vectors (most of an expanded sheet's work) are tidied on threads of their
+    // own from the start too, while the scene and Euler–Lagrange sections are written. Neither when
+    // the display layer is held to one thread (`parallel::set_threads`) or the robot has fewer than
+    // three revolute joints: the PPP, RPP and elbow arms prove and tidy in less time than a thread
+    // takes to start.
     let full = opts.scope == Scope::Full;
+    let compact = compact_mode(der);
+    let frames = opts.frames();
+    let tidy = |der: &Derivation| {
+        if compact {
+            Default::default()
+        } else {
+            newton_euler::tidy_vectors(der, &frames)
+        }
+    };
     if crate::parallel::threads() < 2 || der.robot().revolute_joints() < 3 {
-        return document(der, opts, || full.then(|| agreement(der)));
+        return document(
+            der,
+            opts,
+            compact,
+            || tidy(der),
+            || full.then(|| agreement(der)),
+        );
     }
     std::thread::scope(|scope| {
         let proofs = full.then(|| scope.spawn(|| agreement(der)));
         let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
-        document(der, opts, proofs)
+        let tidied = (!frames.is_empty() && !compact).then(|| scope.spawn(|| tidy(der)));
+        let tidied = move || {
+            tidied.map_or_else(Default::default, |h| {
+                h.join().expect("the tidying thread does not panic")
+            })
+        };
+        document(der, opts, compact, tidied, proofs)
     })
 }
 
-/// The sheet's text, with the agreement section from `proofs` (called once, when it is due).
+/// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` and the
+/// agreement section from `proofs` (each called once, when it is due).
 fn document(
     der: &Derivation,
     opts: &SheetOptions,
+    compact: bool,
+    tidied: impl FnOnce() -> newton_euler::Tidied,
     proofs: impl FnOnce() -> Option<String>,
 ) -> String {
     let mut lay = Layout::new();
     // The equations' sides, tidied once for every section that prints them.
     let mut sides = lagrange::Sides::default();
-    let compact = compact_mode(der);
     let mut out = String::from(PREAMBLE);
     out.push_str(&format!(
         "\\begin{{center}}\n{{\\Large\\bfseries Equations of motion: {}}}\n\\end{{center}}\n\n",
@@ -168,10 +194,10 @@ fn document(
         });
     }
     let frames = opts.frames();
-    let mut tidied = if compact {
+    let mut tidied = if frames.is_empty() {
         Default::default()
     } else {
-        newton_euler::tidy_vectors(der, &frames)
+        tidied()
     };
     for frame in frames {
         out.push_str(&if compact {
