@@ -337,6 +337,35 @@ impl Expr {
         }
     }
 
+    /// `c · self · base^1` for a monomial `self` of plain bases ([`Expr::is_plain_base`]) with
+    /// coefficient 1 (the number 1, one base, or a product) and a plain `base`: what
+    /// [`Expr::product`] makes of them, with `base` put in its place among the factors (or its
+    /// exponent raised) instead of every factor sorted again. `None` if `self` is not such a
+    /// monomial. For the terms the display rules merge ([`crate::algebra::tidy::contract`]).
+    pub(crate) fn monomial_times_base(&self, base: &Expr, c: &Rational) -> Option<Expr> {
+        debug_assert!(base.is_plain_base() && !c.is_zero());
+        let mut factors: Vec<(Expr, i64)> = match self.kind() {
+            Kind::Mul(k, fs) if k.is_one() && fs.iter().all(|(b, _)| b.is_plain_base()) => {
+                fs.clone()
+            }
+            Kind::Num(r) if r.is_one() => Vec::new(),
+            _ if self.is_plain_base() => vec![(self.clone(), 1)],
+            _ => return None,
+        };
+        match factors.binary_search_by(|(b, _)| b.cmp(base)) {
+            Ok(i) if factors[i].1 == -1 => {
+                factors.remove(i);
+            }
+            Ok(i) => factors[i].1 += 1,
+            Err(i) => factors.insert(i, (base.clone(), 1)),
+        }
+        Some(match factors.len() {
+            0 => Expr::num(c.clone()),
+            1 if factors[0].1 == 1 && c.is_one() => factors.pop().expect("one factor").0,
+            _ => Expr::make(Kind::Mul(c.clone(), factors)),
+        })
+    }
+
     /// The sum `constant + Σ cᵢ tᵢ` of distinct terms `tᵢ` (products with coefficient 1, none the
     /// number 1) with non-zero coefficients, in the total order: what [`Expr::sum`] makes of them
     /// once it has merged them (its last step), and what [`crate::algebra::Poly::to_expr`] gives for
@@ -902,6 +931,49 @@ mod tests {
     }
     fn y() -> Expr {
         Expr::symbol("y")
+    }
+
+    /// `monomial_times_base` is what `product` makes of the same factors: a new base in the middle,
+    /// at either end, a raised exponent, an exponent raised to zero, no other factor, a coefficient
+    /// of one and not; and it declines what is not a monomial of plain bases.
+    #[test]
+    fn monomial_times_base_is_the_product() {
+        let (c1, s2) = (Expr::cos(&Expr::q(1)), Expr::sin(&Expr::q(2)));
+        let (m, a, z) = (Expr::symbol("m2"), Expr::symbol("a1"), Expr::symbol("zz"));
+        let monomials = [
+            Expr::one(),
+            m.clone(),
+            &m * &a,
+            &m * &a * &z * &s2,
+            &m * &c1,
+            c1.pow(2).unwrap() * &a,
+            c1.pow(-1).unwrap() * &m,
+        ];
+        for r in &monomials {
+            for base in [&c1, &s2, &m, &z] {
+                for c in [
+                    Rational::one(),
+                    Rational::int(-2),
+                    Rational::new(3, 4).unwrap(),
+                ] {
+                    let want = Expr::product([Expr::num(c.clone()), r.clone(), base.clone()]);
+                    assert_eq!(
+                        r.monomial_times_base(base, &c),
+                        Some(want),
+                        "{r:?} {base:?}"
+                    );
+                }
+            }
+        }
+        let two_m = Expr::int(2) * &m;
+        for r in [
+            two_m,
+            &m + &a,
+            Expr::int(3),
+            Expr::sqrt(&Expr::int(2)).unwrap(),
+        ] {
+            assert_eq!(r.monomial_times_base(&c1, &Rational::one()), None, "{r:?}");
+        }
     }
 
     /// One row per canonical rule in the module documentation.

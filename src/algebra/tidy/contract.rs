@@ -151,18 +151,38 @@ struct Candidate {
 }
 
 impl AngleIdentity {
-    /// `c h(A ± B)` if the two candidates are the two sides of this identity (in either order).
-    fn merge(&self, p: &Candidate, q: &Candidate, a: &Expr, b: &Expr) -> Option<Expr> {
+    /// The first term's coefficient `c` if the two candidates are the two sides of this identity
+    /// (in either order).
+    fn matching<'a>(&self, p: &'a Candidate, q: &'a Candidate) -> Option<&'a Rational> {
         let sign = Rational::int(self.sign);
         [(p, q), (q, p)].into_iter().find_map(|(x, y)| {
-            (x.funcs == self.first && y.funcs == self.second && y.coeff == &x.coeff * &sign).then(
-                || {
-                    let angle = if self.plus { a + b } else { a - b };
-                    Expr::fun(self.result, &angle).scale(&x.coeff)
-                },
-            )
+            (x.funcs == self.first && y.funcs == self.second && y.coeff == &x.coeff * &sign)
+                .then_some(&x.coeff)
         })
     }
+
+    /// `h(A ± B)`, the identity's left side for the angles `a` and `b`.
+    fn value(&self, a: &Expr, b: &Expr) -> Expr {
+        let angle = if self.plus { a + b } else { a - b };
+        Expr::fun(self.result, &angle)
+    }
+}
+
+/// `c · h · R`: a merged term, from the value `h` of its angle sum (`h(A ± B)`, a sine or cosine,
+/// possibly negated), its coefficient `c` and its other factors `R`. Built by putting `h` in its
+/// place among `R`'s factors ([`Expr::monomial_times_base`]) when they are the normal form's, by
+/// [`Expr::product`] otherwise; the same expression either way.
+fn merged_term(h: &Expr, c: &Rational, rest: &Expr) -> Expr {
+    let (sign, base) = match h.kind() {
+        Kind::Fun(..) => (Rational::one(), h),
+        Kind::Mul(k, fs) if fs.len() == 1 && fs[0].1 == 1 && fs[0].0.is_plain_base() => {
+            (k.clone(), &fs[0].0)
+        }
+        _ => return h.scale(c) * rest,
+    };
+    let fast = rest.monomial_times_base(base, &(c * &sign));
+    debug_assert!(fast.as_ref().is_none_or(|m| *m == h.scale(c) * rest));
+    fast.unwrap_or_else(|| h.scale(c) * rest)
 }
 
 /// Whether the normal form expands `sin`/`cos` of `e` exactly: a non-zero integer combination of
@@ -219,30 +239,74 @@ impl Term {
 }
 
 /// Rebuilds a sum from the terms not `used`, plus the `merged` ones; `None` if nothing merged. The
-/// kept terms go in as they stand (monomial and coefficient), never rebuilt.
+/// kept terms go in as they stand (monomial and coefficient), never rebuilt, and in the order they
+/// stand (the canonical order of the sum they came from): only the merged terms are sorted, then
+/// merged into them.
 pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Option<Expr> {
     if merged.is_empty() {
         return None;
     }
+    #[cfg(debug_assertions)]
+    let merged_terms = merged.clone();
     let mut constant = Rational::zero();
-    let mut all: Vec<(Expr, Rational)> = Vec::with_capacity(terms.len());
-    for (t, _) in terms.iter().zip(used).filter(|(_, u)| !**u) {
-        if t.factors.is_empty() {
-            constant += &t.coeff;
-        } else {
-            all.push((t.monomial.clone(), t.coeff.clone()));
-        }
-    }
+    let mut new: Vec<(Expr, Rational)> = Vec::with_capacity(merged.len());
     for m in merged {
         for (t, c) in m.terms() {
             if t.is_one() {
                 constant += &c;
             } else {
-                all.push((t, c));
+                new.push((t, c));
             }
         }
     }
-    Some(Expr::sum_of_terms(constant, all))
+    new.sort_by(|a, b| a.0.cmp(&b.0));
+    let mut new = new.into_iter().peekable();
+    let mut out: Vec<(Expr, Rational)> = Vec::with_capacity(terms.len());
+    for (t, _) in terms.iter().zip(used).filter(|(_, u)| !**u) {
+        if t.factors.is_empty() {
+            constant += &t.coeff;
+            continue;
+        }
+        debug_assert!(out.last().is_none_or(|(last, _)| *last <= t.monomial));
+        while let Some(n) = new.next_if(|(n, _)| *n < t.monomial) {
+            push_term(&mut out, n);
+        }
+        push_term(&mut out, (t.monomial.clone(), t.coeff.clone()));
+    }
+    for n in new {
+        push_term(&mut out, n);
+    }
+    if out.last().is_some_and(|(_, c)| c.is_zero()) {
+        out.pop();
+    }
+    let sum = Expr::sum_of_sorted_monomials(constant, out);
+    #[cfg(debug_assertions)]
+    {
+        // What sorting every term again gives.
+        let kept = terms
+            .iter()
+            .zip(used)
+            .filter(|(_, u)| !**u)
+            .map(|(t, _)| t.expr());
+        let merged = merged_terms.into_iter();
+        assert_eq!(sum, Expr::sum(kept.chain(merged)), "rebuild");
+    }
+    Some(sum)
+}
+
+/// Appends a term to terms sorted so far, `t` not before the last: added to the last if it is the
+/// same monomial, else after it (the last dropped first if its coefficient came to zero), as
+/// [`Expr::sum`] merges its sorted terms.
+fn push_term(out: &mut Vec<(Expr, Rational)>, (t, c): (Expr, Rational)) {
+    match out.last_mut() {
+        Some((last, sum)) if (*last).cmp(&t) == std::cmp::Ordering::Equal => *sum += &c,
+        _ => {
+            if out.last().is_some_and(|(_, sum)| sum.is_zero()) {
+                out.pop();
+            }
+            out.push((t, c));
+        }
+    }
 }
 
 /// The other factors `R` of a candidate term (as a canonical factor list) and its angles `A < B`.
@@ -316,14 +380,21 @@ fn angle_sum(e: &Expr) -> Option<Expr> {
         .collect();
     let mut used = vec![false; terms.len()];
     let mut merged = Vec::new();
+    // The values `h(A ± B)` met in this pass, by identity and angles: few angles recur in many terms.
+    let mut values: FxHashMap<(usize, &Expr, &Expr), Expr> = FxHashMap::default();
     for ((rest, a, b), cands) in &groups {
         for (x, p) in cands.iter().enumerate() {
             for q in &cands[x + 1..] {
                 if used[p.index] || used[q.index] || p.index == q.index {
                     continue;
                 }
-                if let Some(m) = ANGLE_IDENTITIES.iter().find_map(|id| id.merge(p, q, a, b)) {
-                    merged.push(m * rest);
+                let found = ANGLE_IDENTITIES
+                    .iter()
+                    .enumerate()
+                    .find_map(|(k, id)| id.matching(p, q).map(|c| (k, id, c)));
+                if let Some((k, id, c)) = found {
+                    let h = values.entry((k, a, b)).or_insert_with(|| id.value(a, b));
+                    merged.push(merged_term(h, c, rest));
                     used[p.index] = true;
                     used[q.index] = true;
                 }
