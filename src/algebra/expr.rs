@@ -415,16 +415,8 @@ impl Expr {
     pub(crate) fn sum_of_terms(constant: Rational, mut all: Vec<(Expr, Rational)>) -> Expr {
         all.sort_by(|a, b| a.0.cmp(&b.0));
         let mut terms: Vec<(Expr, Rational)> = Vec::with_capacity(all.len());
-        for (t, c) in all {
-            match terms.last_mut() {
-                Some((last, sum)) if (*last).cmp(&t) == std::cmp::Ordering::Equal => *sum += &c,
-                _ => {
-                    if terms.last().is_some_and(|(_, sum)| sum.is_zero()) {
-                        terms.pop();
-                    }
-                    terms.push((t, c));
-                }
-            }
+        for term in all {
+            push_sorted_term(&mut terms, term);
         }
         if terms.last().is_some_and(|(_, sum)| sum.is_zero()) {
             terms.pop();
@@ -751,6 +743,22 @@ fn cmp_base(a: &Expr, b: &Expr) -> Ordering {
         }
         (Kind::Mul(c, xs), Kind::Mul(d, ys)) => cmp_factors(xs, ys).then_with(|| c.cmp(d)),
         _ => unreachable!("equal ranks have equal kinds"),
+    }
+}
+
+/// Appends the term `(t, c)` to terms sorted so far (`t` not before the last): added to the last if
+/// it is the same monomial, else put after it, the last dropped first if its coefficient came to
+/// zero. A last term of coefficient zero is left for the caller to drop.
+#[inline]
+pub(crate) fn push_sorted_term(terms: &mut Vec<(Expr, Rational)>, (t, c): (Expr, Rational)) {
+    match terms.last_mut() {
+        Some((last, sum)) if (*last).cmp(&t) == Ordering::Equal => *sum += &c,
+        _ => {
+            if terms.last().is_some_and(|(_, sum)| sum.is_zero()) {
+                terms.pop();
+            }
+            terms.push((t, c));
+        }
     }
 }
 

@@ -27,7 +27,7 @@
 //! `sin(q1/2)` or `cos(π/5)` stay as they are.
 
 use super::rule::{first_change, fixpoint, Rule};
-use crate::algebra::expr::{Expr, Func, Kind};
+use crate::algebra::expr::{push_sorted_term, Expr, Func, Kind};
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::normal::normal_form;
 use crate::algebra::number::Rational;
@@ -269,12 +269,12 @@ pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Optio
         }
         debug_assert!(out.last().is_none_or(|(last, _)| *last <= t.monomial));
         while let Some(n) = new.next_if(|(n, _)| *n < t.monomial) {
-            push_term(&mut out, n);
+            push_sorted_term(&mut out, n);
         }
-        push_term(&mut out, (t.monomial.clone(), t.coeff.clone()));
+        push_sorted_term(&mut out, (t.monomial.clone(), t.coeff.clone()));
     }
     for n in new {
-        push_term(&mut out, n);
+        push_sorted_term(&mut out, n);
     }
     if out.last().is_some_and(|(_, c)| c.is_zero()) {
         out.pop();
@@ -292,21 +292,6 @@ pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Optio
         assert_eq!(sum, Expr::sum(kept.chain(merged)), "rebuild");
     }
     Some(sum)
-}
-
-/// Appends a term to terms sorted so far, `t` not before the last: added to the last if it is the
-/// same monomial, else after it (the last dropped first if its coefficient came to zero), as
-/// [`Expr::sum`] merges its sorted terms.
-fn push_term(out: &mut Vec<(Expr, Rational)>, (t, c): (Expr, Rational)) {
-    match out.last_mut() {
-        Some((last, sum)) if (*last).cmp(&t) == std::cmp::Ordering::Equal => *sum += &c,
-        _ => {
-            if out.last().is_some_and(|(_, sum)| sum.is_zero()) {
-                out.pop();
-            }
-            out.push((t, c));
-        }
-    }
 }
 
 /// The other factors `R` of a candidate term (as a canonical factor list) and its angles `A < B`.
