@@ -135,28 +135,25 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // three revolute joints: the PPP, RPP and elbow arms prove and tidy in less time than a thread
     // takes to start.
     let full = opts.scope == Scope::Full;
-    let compact = compact_mode(der);
     let frames = opts.frames();
-    let tidy = |der: &Derivation| {
-        if compact {
-            Default::default()
-        } else {
-            newton_euler::tidy_vectors(der, &frames)
-        }
-    };
     if crate::parallel::threads() < 2 || der.robot().revolute_joints() < 3 {
-        return document(
-            der,
-            opts,
-            compact,
-            || tidy(der),
-            || full.then(|| agreement(der)),
-        );
+        let compact = compact_mode(der);
+        let tidied = || {
+            if compact {
+                Default::default()
+            } else {
+                newton_euler::tidy_vectors(der, &frames)
+            }
+        };
+        return document(der, opts, compact, tidied, || full.then(|| agreement(der)));
     }
     std::thread::scope(|scope| {
         let proofs = full.then(|| scope.spawn(|| agreement(der)));
         let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
-        let tidied = (!frames.is_empty() && !compact).then(|| scope.spawn(|| tidy(der)));
+        // Decided once the proofs have started (an arm of up to four joints reads its expanded D).
+        let compact = compact_mode(der);
+        let tidied = (!frames.is_empty() && !compact)
+            .then(|| scope.spawn(|| newton_euler::tidy_vectors(der, &frames)));
         let tidied = move || {
             tidied.map_or_else(Default::default, |h| {
                 h.join().expect("the tidying thread does not panic")
