@@ -812,10 +812,19 @@ impl Poly {
     }
 
     /// [`Poly::to_expr`] built node by node, when every atom is a symbol, `sin`/`cos` or π (the
-    /// bases of a product as they stand): each atom's expression and its rank in the total order are
-    /// found once, each term's factors sorted by rank, and the terms sorted once; nothing is merged,
-    /// since the monomials are distinct. `None` when an atom is a square root or another expression.
+    /// bases of a product as they stand): the terms ranked ([`Poly::ranked`]), then each term's
+    /// monomial from its sorted bases; nothing is merged, since the monomials are distinct. `None`
+    /// when an atom is a square root or another expression.
     fn to_expr_direct(&self) -> Option<Expr> {
+        self.ranked().map(|r| r.to_expr())
+    }
+
+    /// The polynomial's terms over its atoms ranked by the canonical order of their bases
+    /// ([`Ranked`]), when every atom is a symbol, `sin`/`cos` or π; `None` otherwise.
+    /// [`Ranked::to_expr`] is [`Poly::to_expr`]. Each atom's expression and rank are found once,
+    /// each term's factors sorted by rank, and the terms sorted once, on these numbers instead of
+    /// on the expressions ([`cmp_ranked`]).
+    pub(crate) fn ranked(&self) -> Option<Ranked<'_>> {
         let mut atoms: Vec<AtomId> = self
             .terms
             .iter()
@@ -843,47 +852,23 @@ impl Poly {
         }
         let index = |id: AtomId| atoms.binary_search(&id).expect("collected above");
         let mut constant = Rational::zero();
-        // Each term as (rank, atom, exponent) by rank: the monomials then sort as the total order
-        // sorts them (factor lists base by base, the higher power first for an equal base, a prefix
-        // first), on these numbers instead of on the expressions.
-        type Ranked = Vec<(u32, usize, i32)>;
-        let mut keyed: Vec<(Ranked, &Rational)> = Vec::with_capacity(self.terms.len());
+        let mut keyed: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(self.terms.len());
         for (m, c) in &self.terms {
             if m.0.is_empty() {
                 constant = c.clone();
                 continue;
             }
-            let mut key: Vec<(u32, usize, i32)> =
-                m.0.iter()
-                    .map(|&(id, e)| {
-                        let i = index(id);
-                        (rank[i], i, e)
-                    })
-                    .collect();
-            key.sort_unstable_by_key(|&(r, _, _)| r);
+            let mut key: Vec<(u32, i32)> =
+                m.0.iter().map(|&(id, e)| (rank[index(id)], e)).collect();
+            key.sort_unstable_by_key(|&(r, _)| r);
             keyed.push((key, c));
         }
-        keyed.sort_unstable_by(|(x, _), (y, _)| {
-            let pairs = x.iter().zip(y.iter());
-            for (&(r, _, e), &(s, _, f)) in pairs {
-                let o = r.cmp(&s).then(f.cmp(&e));
-                if o != std::cmp::Ordering::Equal {
-                    return o;
-                }
-            }
-            x.len().cmp(&y.len())
-        });
-        let terms: Vec<(Expr, Rational)> = keyed
-            .into_iter()
-            .map(|(key, c)| {
-                let factors = key
-                    .iter()
-                    .map(|&(_, i, e)| (bases[i].clone(), i64::from(e)))
-                    .collect();
-                (Expr::monomial_of_sorted_bases(factors), c.clone())
-            })
-            .collect();
-        Some(Expr::sum_of_sorted_monomials(constant, terms))
+        keyed.sort_unstable_by(|(x, _), (y, _)| cmp_ranked(x, y));
+        Some(Ranked {
+            bases: order.iter().map(|&i| bases[i].clone()).collect(),
+            terms: keyed,
+            constant,
+        })
     }
 
     /// [`Poly::to_expr`] through the general constructors, for any atoms.
@@ -904,6 +889,58 @@ impl Poly {
             .collect();
         Expr::sum(terms)
     }
+}
+
+/// A polynomial's terms over its atoms ranked by the canonical order of their bases
+/// ([`Poly::ranked`]): what the display rules work on without building an expression per term.
+#[derive(Clone, Debug)]
+pub(crate) struct Ranked<'a> {
+    /// The atoms' expressions, by rank (the canonical order of bases).
+    pub(crate) bases: Vec<Expr>,
+    /// The terms other than the constant, in the canonical order of their monomials: each its
+    /// factors `(rank, exponent)` sorted by rank, and its coefficient (non-zero).
+    pub(crate) terms: Vec<(Vec<(u32, i32)>, &'a Rational)>,
+    /// The constant term (zero when there is none).
+    pub(crate) constant: Rational,
+}
+
+impl Ranked<'_> {
+    /// The monomial of a factor list, as the canonical sum holds it.
+    pub(crate) fn monomial(&self, factors: &[(u32, i32)]) -> Expr {
+        monomial_of(&self.bases, factors)
+    }
+
+    /// The canonical sum, [`Poly::to_expr`] of the polynomial.
+    pub(crate) fn to_expr(&self) -> Expr {
+        let terms: Vec<(Expr, Rational)> = self
+            .terms
+            .iter()
+            .map(|(factors, c)| (self.monomial(factors), (*c).clone()))
+            .collect();
+        Expr::sum_of_sorted_monomials(self.constant.clone(), terms)
+    }
+}
+
+/// The monomial of ranked factors over `bases` (by rank).
+fn monomial_of(bases: &[Expr], factors: &[(u32, i32)]) -> Expr {
+    Expr::monomial_of_sorted_bases(
+        factors
+            .iter()
+            .map(|&(r, e)| (bases[r as usize].clone(), i64::from(e)))
+            .collect(),
+    )
+}
+
+/// Ranked factor lists in the canonical order of monomials: base by base (by rank), for an equal
+/// base the higher power first, a prefix first (what `Expr`'s order does on the bases).
+pub(crate) fn cmp_ranked(x: &[(u32, i32)], y: &[(u32, i32)]) -> std::cmp::Ordering {
+    for (&(r, e), &(s, f)) in x.iter().zip(y) {
+        let o = r.cmp(&s).then(f.cmp(&e));
+        if o != std::cmp::Ordering::Equal {
+            return o;
+        }
+    }
+    x.len().cmp(&y.len())
 }
 
 /// A term as a factor list and its coefficient.

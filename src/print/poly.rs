@@ -13,7 +13,6 @@ use super::layout::width;
 use super::{latex, text, Piece, Product, Style};
 use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::{Expr, Poly, Rational};
-use std::cmp::Ordering;
 
 /// The atoms of some polynomials, ranked by the canonical order of their bases.
 pub struct Ranks {
@@ -145,16 +144,8 @@ impl Ranks {
 }
 
 /// Factor lists in the canonical order of products: base by base (by rank), for an equal base the
-/// higher power first, then the shorter list first.
-pub(super) fn cmp_factor_lists(a: &[(u32, i32)], b: &[(u32, i32)]) -> Ordering {
-    for (x, y) in a.iter().zip(b) {
-        let o = x.0.cmp(&y.0).then_with(|| y.1.cmp(&x.1));
-        if o != Ordering::Equal {
-            return o;
-        }
-    }
-    a.len().cmp(&b.len())
-}
+/// higher power first, then the shorter list first (the order [`Poly::to_expr`] sorts terms in).
+pub(super) use crate::algebra::poly::cmp_ranked as cmp_factor_lists;
 
 /// The first eight factors of a list as one integer that orders as [`cmp_factor_lists`] orders
 /// them: a byte per rank (plus one, so that a list that ends sorts first) and a byte per exponent

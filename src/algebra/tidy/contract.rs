@@ -62,18 +62,21 @@ pub fn contract_trig(e: &Expr) -> Expr {
 
 /// [`contract_trig`] of an expression already in normal form (`p.to_expr()` of a polynomial `p`).
 pub fn contract_normal(e: &Expr) -> Expr {
-    fixpoint(e, PASS_LIMIT, |e| {
-        contractible(e)
-            .then(|| first_change(&TRIG_RULES, e))
-            .flatten()
-    })
+    fixpoint(e, PASS_LIMIT, pass)
+}
+
+/// One pass of [`contract_normal`]: the first rule of [`TRIG_RULES`] that changes `e`, if any may.
+pub(super) fn pass(e: &Expr) -> Option<Expr> {
+    contractible(e)
+        .then(|| first_change(&TRIG_RULES, e))
+        .flatten()
 }
 
 /// Whether a rule of [`TRIG_RULES`] may apply to `e`: it is a sum with a term that has two sines or
 /// cosines of angles (each rule merges two terms of which one has two such factors, or a squared
 /// cosine, which counts as two). Most sums of a sheet have none, and are passed over without being
 /// taken apart.
-fn contractible(e: &Expr) -> bool {
+pub(super) fn contractible(e: &Expr) -> bool {
     let Kind::Add(_, ts) = e.kind() else {
         return false;
     };
@@ -144,16 +147,19 @@ pub const ANGLE_IDENTITIES: [AngleIdentity; 4] = [
 ];
 
 /// One term's part in a candidate pair: which term, its functions of `A` and `B`, its coefficient.
-struct Candidate {
-    index: usize,
-    funcs: (Func, Func),
-    coeff: Rational,
+pub(super) struct Candidate {
+    /// The term's place in the sum.
+    pub(super) index: usize,
+    /// Its functions of `A` and of `B`.
+    pub(super) funcs: (Func, Func),
+    /// Its coefficient.
+    pub(super) coeff: Rational,
 }
 
 impl AngleIdentity {
     /// The first term's coefficient `c` if the two candidates are the two sides of this identity
     /// (in either order).
-    fn matching<'a>(&self, p: &'a Candidate, q: &'a Candidate) -> Option<&'a Rational> {
+    pub(super) fn matching<'a>(&self, p: &'a Candidate, q: &'a Candidate) -> Option<&'a Rational> {
         let sign = Rational::int(self.sign);
         [(p, q), (q, p)].into_iter().find_map(|(x, y)| {
             (x.funcs == self.first && y.funcs == self.second && y.coeff == &x.coeff * &sign)
@@ -162,7 +168,7 @@ impl AngleIdentity {
     }
 
     /// `h(A ± B)`, the identity's left side for the angles `a` and `b`.
-    fn value(&self, a: &Expr, b: &Expr) -> Expr {
+    pub(super) fn value(&self, a: &Expr, b: &Expr) -> Expr {
         let angle = if self.plus { a + b } else { a - b };
         Expr::fun(self.result, &angle)
     }
@@ -172,7 +178,7 @@ impl AngleIdentity {
 /// possibly negated), its coefficient `c` and its other factors `R`. Built by putting `h` in its
 /// place among `R`'s factors ([`Expr::monomial_times_base`]) when they are the normal form's, by
 /// [`Expr::product`] otherwise; the same expression either way.
-fn merged_term(h: &Expr, c: &Rational, rest: &Expr) -> Expr {
+pub(super) fn merged_term(h: &Expr, c: &Rational, rest: &Expr) -> Expr {
     let (sign, base) = match h.kind() {
         Kind::Fun(..) => (Rational::one(), h),
         Kind::Mul(k, fs) if fs.len() == 1 && fs[0].1 == 1 && fs[0].0.is_plain_base() => {
@@ -238,17 +244,31 @@ impl Term {
     }
 }
 
-/// Rebuilds a sum from the terms not `used`, plus the `merged` ones; `None` if nothing merged. The
-/// kept terms go in as they stand (monomial and coefficient), never rebuilt, and in the order they
-/// stand (the canonical order of the sum they came from): only the merged terms are sorted, then
-/// merged into them.
+/// Rebuilds a sum from the terms not `used`, plus the `merged` ones; `None` if nothing merged
+/// ([`rebuild_from`]).
 pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Option<Expr> {
+    let kept = terms
+        .iter()
+        .zip(used)
+        .filter(|(_, u)| !**u)
+        .map(|(t, _)| (&t.monomial, &t.coeff));
+    rebuild_from(Rational::zero(), kept, merged)
+}
+
+/// Rebuilds a sum from `constant`, the `kept` terms `(monomial, coefficient)` (the monomial 1 for a
+/// constant) and the `merged` ones; `None` if nothing merged. The kept terms go in as they stand,
+/// never rebuilt, and in the order they stand (the canonical order of the sum they came from): only
+/// the merged terms are sorted, then merged into them.
+pub(super) fn rebuild_from<'a>(
+    mut constant: Rational,
+    kept: impl Iterator<Item = (&'a Expr, &'a Rational)> + Clone,
+    merged: Vec<Expr>,
+) -> Option<Expr> {
     if merged.is_empty() {
         return None;
     }
     #[cfg(debug_assertions)]
-    let merged_terms = merged.clone();
-    let mut constant = Rational::zero();
+    let (merged_terms, kept_terms, constant_in) = (merged.clone(), kept.clone(), constant.clone());
     let mut new: Vec<(Expr, Rational)> = Vec::with_capacity(merged.len());
     for m in merged {
         for (t, c) in m.terms() {
@@ -261,17 +281,18 @@ pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Optio
     }
     new.sort_by(|a, b| a.0.cmp(&b.0));
     let mut new = new.into_iter().peekable();
-    let mut out: Vec<(Expr, Rational)> = Vec::with_capacity(terms.len());
-    for (t, _) in terms.iter().zip(used).filter(|(_, u)| !**u) {
-        if t.factors.is_empty() {
-            constant += &t.coeff;
+    let mut out: Vec<(Expr, Rational)> =
+        Vec::with_capacity(new.len() + kept.size_hint().1.unwrap_or(0));
+    for (monomial, coeff) in kept {
+        if monomial.is_one() {
+            constant += coeff;
             continue;
         }
-        debug_assert!(out.last().is_none_or(|(last, _)| *last <= t.monomial));
-        while let Some(n) = new.next_if(|(n, _)| *n < t.monomial) {
+        debug_assert!(out.last().is_none_or(|(last, _)| last <= monomial));
+        while let Some(n) = new.next_if(|(n, _)| n < monomial) {
             push_sorted_term(&mut out, n);
         }
-        push_sorted_term(&mut out, (t.monomial.clone(), t.coeff.clone()));
+        push_sorted_term(&mut out, (monomial.clone(), coeff.clone()));
     }
     for n in new {
         push_sorted_term(&mut out, n);
@@ -283,13 +304,9 @@ pub(super) fn rebuild(terms: &[Term], used: &[bool], merged: Vec<Expr>) -> Optio
     #[cfg(debug_assertions)]
     {
         // What sorting every term again gives.
-        let kept = terms
-            .iter()
-            .zip(used)
-            .filter(|(_, u)| !**u)
-            .map(|(t, _)| t.expr());
-        let merged = merged_terms.into_iter();
-        assert_eq!(sum, Expr::sum(kept.chain(merged)), "rebuild");
+        let kept = kept_terms.map(|(m, c)| m.scale(c));
+        let all = kept.chain(merged_terms).chain([Expr::num(constant_in)]);
+        assert_eq!(sum, Expr::sum(all), "rebuild");
     }
     Some(sum)
 }

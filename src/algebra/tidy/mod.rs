@@ -44,6 +44,7 @@ pub mod factor;
 pub mod group;
 pub mod memo;
 pub mod pythagoras;
+mod ranked;
 pub mod rates;
 pub mod rule;
 pub mod share;
@@ -90,15 +91,20 @@ fn is_atom(e: &Expr) -> bool {
 
 /// [`tidy_by`] of a polynomial, which is its own normal form: the conversion from an expression that
 /// [`tidy_by`] starts with (the larger part of its cost on the intermediate vectors of a sheet) is
-/// skipped. The same result as `tidy_by(&p.to_expr(), grouping)`.
+/// skipped, and the first pass of the contraction, the costly one, works on the polynomial's
+/// ranked terms (module `ranked`) when its atoms are symbols, sines and cosines. The same result as
+/// `tidy_by(&p.to_expr(), grouping)`.
 pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
-    let e = p.to_expr();
     // A single term is its own display form: no rule has two terms to merge, and the grouping
     // gives back the canonical product it started from.
     if p.len() <= 1 {
-        return e;
+        return p.to_expr();
     }
-    group(&contract::contract_normal(&e), grouping)
+    let contracted = match p.ranked() {
+        Some(r) => ranked::contract_ranked(&r),
+        None => contract::contract_normal(&p.to_expr()),
+    };
+    group(&contracted, grouping)
 }
 
 /// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial
