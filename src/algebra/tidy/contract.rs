@@ -28,10 +28,8 @@
 
 use super::rule::{first_change, fixpoint, Rule};
 use crate::algebra::expr::{push_sorted_term, Expr, Func, Kind};
-use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::normal::normal_form;
 use crate::algebra::number::Rational;
-use std::collections::BTreeMap;
 
 /// The most passes [`contract_trig`] makes (each pass merges at least one pair of terms).
 pub const PASS_LIMIT: usize = 64;
@@ -311,99 +309,10 @@ pub(super) fn rebuild_from<'a>(
     Some(sum)
 }
 
-/// The other factors `R` of a candidate term (as a canonical factor list) and its angles `A < B`.
-type BucketKey = (Vec<(Expr, i64)>, Expr, Expr);
-
-/// One pass of the angle-sum identities over the terms of `e`.
+/// One pass of the angle-sum identities over the terms of `e`: its terms over its ranked bases
+/// ([`super::ranked`]), paired there.
 fn angle_sum(e: &Expr) -> Option<Expr> {
-    let terms = Term::split(e);
-    // (other factors R, angle A, angle B) -> the terms `c R f(A) g(B)`, A < B in canonical order.
-    // Keyed first by R's factor list (canonical lists are equal exactly when the products are), so
-    // the product R is built only for the groups of two or more, the only ones that can merge.
-    let mut buckets: FxHashMap<BucketKey, Vec<Candidate>> = FxHashMap::default();
-    for (index, t) in terms.iter().enumerate() {
-        let trig: Vec<(usize, Func, &Expr)> = t
-            .factors
-            .iter()
-            .enumerate()
-            .filter_map(|(i, (b, k))| match b.kind() {
-                Kind::Fun(f, a) if *k > 0 && is_angle(a) => Some((i, *f, a)),
-                _ => None,
-            })
-            .collect();
-        for (x, &(i, f, a)) in trig.iter().enumerate() {
-            for &(j, g, b) in &trig[x + 1..] {
-                if a == b {
-                    continue;
-                }
-                let ((a, f), (b, g)) = if a < b {
-                    ((a, f), (b, g))
-                } else {
-                    ((b, g), (a, f))
-                };
-                let rest: Vec<(Expr, i64)> = t
-                    .factors
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(n, (base, k))| {
-                        let k = if n == i || n == j { k - 1 } else { *k };
-                        (k != 0).then(|| (base.clone(), k))
-                    })
-                    .collect();
-                buckets
-                    .entry((rest, a.clone(), b.clone()))
-                    .or_default()
-                    .push(Candidate {
-                        index,
-                        funcs: (f, g),
-                        coeff: t.coeff.clone(),
-                    });
-            }
-        }
-    }
-    // Visited in canonical order of (R, A, B), never in hash order.
-    let groups: BTreeMap<(Expr, Expr, Expr), Vec<Candidate>> = buckets
-        .into_iter()
-        .filter(|(_, cands)| cands.len() >= 2)
-        .map(|((rest, a, b), cands)| {
-            // What is left of a canonical product's factor list is sorted and distinct: of plain
-            // bases (the normal form's), it is a product as it stands.
-            let plain = rest.iter().all(|(base, _)| base.is_plain_base());
-            let rest = if plain {
-                Expr::monomial_of_sorted_bases(rest)
-            } else {
-                Expr::product(rest.into_iter().map(|(base, k)| {
-                    base.pow(k)
-                        .expect("bases of a canonical product are non-zero")
-                }))
-            };
-            ((rest, a, b), cands)
-        })
-        .collect();
-    let mut used = vec![false; terms.len()];
-    let mut merged = Vec::new();
-    // The values `h(A ± B)` met in this pass, by identity and angles: few angles recur in many terms.
-    let mut values: FxHashMap<(usize, &Expr, &Expr), Expr> = FxHashMap::default();
-    for ((rest, a, b), cands) in &groups {
-        for (x, p) in cands.iter().enumerate() {
-            for q in &cands[x + 1..] {
-                if used[p.index] || used[q.index] || p.index == q.index {
-                    continue;
-                }
-                let found = ANGLE_IDENTITIES
-                    .iter()
-                    .enumerate()
-                    .find_map(|(k, id)| id.matching(p, q).map(|c| (k, id, c)));
-                if let Some((k, id, c)) = found {
-                    let h = values.entry((k, a, b)).or_insert_with(|| id.value(a, b));
-                    merged.push(merged_term(h, c, rest));
-                    used[p.index] = true;
-                    used[q.index] = true;
-                }
-            }
-        }
-    }
-    rebuild(&terms, &used, merged)
+    super::ranked::rank_sum(e).and_then(|r| super::ranked::angle_sum_ranked(&r, e))
 }
 
 #[cfg(test)]

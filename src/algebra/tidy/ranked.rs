@@ -1,14 +1,16 @@
-//! The first pass of the trig contraction ([`super::contract`]) on a polynomial's ranked terms.
+//! The angle-sum pass of the trig contraction ([`super::contract`]) on a sum's ranked terms.
+//!
+//! A pass pairs terms `c R f(A) g(B)` by the identities of [`ANGLE_IDENTITIES`]. Here the terms
+//! are factor lists over the sum's distinct bases ranked in the canonical order ([`Ranked`]):
+//! candidates are bucketed by integer keys (the other factors `R` and the two angles as ranks) and
+//! visited in the canonical order of `(R, A, B)` by comparing ranks ([`cmp_ranked`], the order of
+//! the expressions); only merged terms and their `R` are built as expressions.
 //!
 //! A sheet's tidying starts from polynomials ([`super::tidy_poly_by`]), and the first pass over
-//! one is the costly one: every term still holds its single-angle factors, and each pair of them is
-//! a candidate for an identity of [`ANGLE_IDENTITIES`]. [`contract_ranked`] makes that pass on the
-//! polynomial's terms over ranked atoms ([`Ranked`]): candidates are bucketed by integer keys
-//! (the other factors as ranks, the two angles as ranks) and visited in the canonical order of
-//! `(R, A, B)` by comparing ranks ([`cmp_ranked`]), which is the order of the expressions; only
-//! the merged terms and their `R` are built as expressions. The later passes, over far fewer
-//! terms, are [`super::contract::contract_normal`]'s own. The result is the same expression
-//! (checked against the expression pass in debug builds).
+//! one is the costly one (every single-angle product still there): [`contract_ranked`] takes its
+//! ranked terms straight from the polynomial ([`crate::algebra::Poly::ranked`], the ranking its
+//! conversion to an expression sorts by), and decides the other rules' first pass without taking
+//! the sum apart where it can. Every later pass ranks the sum's bases ([`rank_sum`]).
 
 use super::contract::{
     contractible, is_angle, merged_term, pass, rebuild_from, Candidate, ANGLE_IDENTITIES,
@@ -19,7 +21,9 @@ use super::rule::{first_change, fixpoint};
 use super::square::square_sum;
 use crate::algebra::expr::{Expr, Func, Kind};
 use crate::algebra::fast_hash::FxHashMap;
+use crate::algebra::number::Rational;
 use crate::algebra::poly::{cmp_ranked, Ranked};
+use std::collections::hash_map::Entry;
 
 /// [`super::contract::contract_normal`] of the canonical sum of `ranked`, with its first pass made
 /// on the ranked terms.
@@ -83,9 +87,83 @@ fn square_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
 /// The candidates of one `(R, A, B)`: the other factors `R` by rank, the angles `A < B` by rank.
 type Key = (Vec<(u32, i32)>, u32, u32);
 
-/// One pass of the angle-sum identities over the terms of `e`, the canonical sum of `ranked`: what
-/// [`super::contract`]'s pass gives, from the ranked terms.
-fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
+/// The terms of the sum `e` over its distinct bases ranked in the canonical order; `None` when `e`
+/// is not a sum (or, past any real expression, holds an exponent beyond `i32`).
+pub(super) fn rank_sum(e: &Expr) -> Option<Ranked<'_>> {
+    let Kind::Add(constant, ts) = e.kind() else {
+        return None;
+    };
+    // Each term's factors by first-seen index, then the indices ranked.
+    let mut index: FxHashMap<&Expr, u32> = FxHashMap::default();
+    let mut seen: Vec<&Expr> = Vec::new();
+    let mut terms: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(ts.len());
+    for (t, c) in ts {
+        let key = match t.kind() {
+            Kind::Mul(_, fs) => {
+                let mut key = Vec::with_capacity(fs.len());
+                for (b, k) in fs {
+                    key.push((
+                        first_seen(&mut index, &mut seen, b),
+                        i32::try_from(*k).ok()?,
+                    ));
+                }
+                key
+            }
+            _ => vec![(first_seen(&mut index, &mut seen, t), 1)],
+        };
+        terms.push((key, c));
+    }
+    let mut order: Vec<usize> = (0..seen.len()).collect();
+    order.sort_by(|&a, &b| seen[a].cmp(seen[b]));
+    let mut rank = vec![0u32; seen.len()];
+    for (r, &i) in order.iter().enumerate() {
+        rank[i] = r as u32;
+    }
+    // A canonical product's factors are in the canonical order already: so are their ranks.
+    for (key, _) in &mut terms {
+        for f in key.iter_mut() {
+            f.0 = rank[f.0 as usize];
+        }
+    }
+    Some(Ranked {
+        bases: order.iter().map(|&i| seen[i].clone()).collect(),
+        terms,
+        constant: constant.clone(),
+    })
+}
+
+/// The index of `b` among the bases `seen` so far, which it joins if new.
+fn first_seen<'a>(
+    index: &mut FxHashMap<&'a Expr, u32>,
+    seen: &mut Vec<&'a Expr>,
+    b: &'a Expr,
+) -> u32 {
+    match index.entry(b) {
+        Entry::Occupied(o) => *o.get(),
+        Entry::Vacant(v) => {
+            seen.push(b);
+            *v.insert(seen.len() as u32 - 1)
+        }
+    }
+}
+
+/// The monomial `R` of ranked factors over `bases`, as a canonical product.
+fn monomial(bases: &[Expr], rest: &[(u32, i32)]) -> Expr {
+    let factors = rest
+        .iter()
+        .map(|&(r, k)| (&bases[r as usize], i64::from(k)));
+    if rest.iter().all(|&(r, _)| bases[r as usize].is_plain_base()) {
+        Expr::monomial_of_sorted_bases(factors.map(|(b, k)| (b.clone(), k)).collect())
+    } else {
+        Expr::product(
+            factors.map(|(b, k)| b.pow(k).expect("bases of a canonical product are non-zero")),
+        )
+    }
+}
+
+/// One pass of the angle-sum identities over the terms of `e`, the canonical sum of `ranked`
+/// (its terms in the same order).
+pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
     let Kind::Add(constant, ts) = e.kind() else {
         unreachable!("a contractible expression is a sum")
     };
@@ -169,7 +247,7 @@ fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
                     let h = values
                         .entry((k, *a, *b))
                         .or_insert_with(|| id.value(angles[*a as usize], angles[*b as usize]));
-                    let r = rest_expr.get_or_insert_with(|| ranked.monomial(rest));
+                    let r = rest_expr.get_or_insert_with(|| monomial(&ranked.bases, rest));
                     merged.push(merged_term(h, c, r));
                     used[p.index] = true;
                     used[q.index] = true;
@@ -189,6 +267,7 @@ fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
 mod tests {
     use super::*;
     use crate::algebra::tidy::contract::contract_normal;
+    use crate::algebra::tidy::testing::{example_components, example_derivations};
 
     /// On the Newton–Euler vectors (both frames) and the inertia matrices of the example scenes,
     /// the contraction from ranked terms is the contraction of the expression: sums passed over,
@@ -196,33 +275,20 @@ mod tests {
     #[test]
     fn the_ranked_first_pass_contracts_as_the_expression_does() {
         let (mut passed, mut contracted, mut total) = (0, 0, 0);
-        for name in ["elbow", "rpp", "scara", "stanford", "puma560"] {
-            let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
-            let text = std::fs::read_to_string(&path).unwrap();
-            let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
-            let der = crate::dynamics::Derivation::new(scene.robot).unwrap();
-            let mut polys: Vec<crate::algebra::Poly> =
-                der.mass_matrix().d.iter().flatten().cloned().collect();
-            for frame in [
-                crate::dynamics::Frame::Body,
-                crate::dynamics::Frame::Inertial,
-            ] {
-                let ne = der.newton_euler(frame);
-                let vectors = ne.omega.iter().chain(&ne.alpha).chain(&ne.a_c).chain(&ne.f);
-                for v in vectors.chain(ne.n.iter().flatten()) {
-                    polys.extend(v.0.iter().filter(|c| c.len() <= 200).cloned());
-                }
-            }
-            for p in polys.iter().filter(|p| p.len() >= 2) {
-                let ranked = p.ranked().expect("symbols, sines and cosines");
-                let e = p.to_expr();
-                assert_eq!(ranked.to_expr(), e, "{e:?}");
-                let got = contract_ranked(&ranked);
-                assert_eq!(got, contract_normal(&e), "{e:?}");
-                total += 1;
-                passed += usize::from(!contractible_ranked(&ranked));
-                contracted += usize::from(got != e);
-            }
+        let names = ["elbow", "rpp", "scara", "stanford", "puma560"];
+        let mut polys = example_components(&names);
+        for der in example_derivations(&names) {
+            polys.extend(der.mass_matrix().d.iter().flatten().cloned());
+        }
+        for p in polys.iter().filter(|p| (2..=200).contains(&p.len())) {
+            let ranked = p.ranked().expect("symbols, sines and cosines");
+            let e = p.to_expr();
+            assert_eq!(ranked.to_expr(), e, "{e:?}");
+            let got = contract_ranked(&ranked);
+            assert_eq!(got, contract_normal(&e), "{e:?}");
+            total += 1;
+            passed += usize::from(!contractible_ranked(&ranked));
+            contracted += usize::from(got != e);
         }
         assert!(
             passed > 50 && contracted > 100 && passed + contracted + 20 < total,

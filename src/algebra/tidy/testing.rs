@@ -1,5 +1,6 @@
 //! What the tests of the display rules share: the check that a rule gives the expected display form
-//! and keeps the value, and the Newton–Euler vectors of the example scenes to run the rules on.
+//! and keeps the value, and the derivations and Newton–Euler vectors of the example scenes to run
+//! the rules on.
 
 use crate::algebra::expr::Expr;
 use crate::algebra::normal::equal;
@@ -19,15 +20,24 @@ pub fn check_rule(rule: impl Fn(&Expr) -> Expr, input: &str, expected: &str) {
     );
 }
 
+/// The derivations of the example scenes `names`.
+pub fn example_derivations(names: &[&str]) -> Vec<crate::dynamics::Derivation> {
+    names
+        .iter()
+        .map(|name| {
+            let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
+            let text = std::fs::read_to_string(&path).unwrap();
+            let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
+            crate::dynamics::Derivation::new(scene.robot).unwrap()
+        })
+        .collect()
+}
+
 /// The components of `ω_i`, `α_i`, `a_c,i`, `f_i` and `n_i` of the example scenes `names`, in both
 /// frames.
 pub fn example_components(names: &[&str]) -> Vec<Poly> {
     let mut out = Vec::new();
-    for name in names {
-        let path = format!("{}/examples/{name}.scene", env!("CARGO_MANIFEST_DIR"));
-        let text = std::fs::read_to_string(&path).unwrap();
-        let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
-        let der = crate::dynamics::Derivation::new(scene.robot).unwrap();
+    for der in example_derivations(names) {
         for frame in [
             crate::dynamics::Frame::Body,
             crate::dynamics::Frame::Inertial,
