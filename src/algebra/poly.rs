@@ -892,10 +892,11 @@ impl Poly {
 }
 
 /// A polynomial's terms over its atoms ranked by the canonical order of their bases
-/// ([`Poly::ranked`]): what the display rules work on without building an expression per term.
-#[derive(Clone, Debug)]
+/// ([`Poly::ranked`]), or of a sum's terms over its bases: what the display rules work on without
+/// building an expression per term.
+#[derive(Debug)]
 pub(crate) struct Ranked<'a> {
-    /// The atoms' expressions, by rank (the canonical order of bases).
+    /// The atoms' expressions (the bases), by rank (the canonical order of bases).
     pub(crate) bases: Vec<Expr>,
     /// The terms other than the constant, in the canonical order of their monomials: each its
     /// factors `(rank, exponent)` sorted by rank, and its coefficient (non-zero).
@@ -921,14 +922,23 @@ impl Ranked<'_> {
     }
 }
 
-/// The monomial of ranked factors over `bases` (by rank).
+/// The monomial of ranked factors over `bases` (by rank), as a canonical product: of plain bases
+/// (symbols, functions, π) as it stands, of others (a sum's terms may hold surds or powers of sums)
+/// through [`Expr::product`].
 fn monomial_of(bases: &[Expr], factors: &[(u32, i32)]) -> Expr {
-    Expr::monomial_of_sorted_bases(
-        factors
-            .iter()
-            .map(|&(r, e)| (bases[r as usize].clone(), i64::from(e)))
-            .collect(),
-    )
+    let list = factors
+        .iter()
+        .map(|&(r, e)| (&bases[r as usize], i64::from(e)));
+    if factors
+        .iter()
+        .all(|&(r, _)| bases[r as usize].is_plain_base())
+    {
+        Expr::monomial_of_sorted_bases(list.map(|(b, e)| (b.clone(), e)).collect())
+    } else {
+        Expr::product(
+            list.map(|(b, e)| b.pow(e).expect("bases of a canonical product are non-zero")),
+        )
+    }
 }
 
 /// Ranked factor lists in the canonical order of monomials: base by base (by rank), for an equal

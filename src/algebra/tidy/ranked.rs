@@ -147,20 +147,6 @@ fn first_seen<'a>(
     }
 }
 
-/// The monomial `R` of ranked factors over `bases`, as a canonical product.
-fn monomial(bases: &[Expr], rest: &[(u32, i32)]) -> Expr {
-    let factors = rest
-        .iter()
-        .map(|&(r, k)| (&bases[r as usize], i64::from(k)));
-    if rest.iter().all(|&(r, _)| bases[r as usize].is_plain_base()) {
-        Expr::monomial_of_sorted_bases(factors.map(|(b, k)| (b.clone(), k)).collect())
-    } else {
-        Expr::product(
-            factors.map(|(b, k)| b.pow(k).expect("bases of a canonical product are non-zero")),
-        )
-    }
-}
-
 /// One pass of the angle-sum identities over the terms of `e`, the canonical sum of `ranked`
 /// (its terms in the same order).
 pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
@@ -247,7 +233,7 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
                     let h = values
                         .entry((k, *a, *b))
                         .or_insert_with(|| id.value(angles[*a as usize], angles[*b as usize]));
-                    let r = rest_expr.get_or_insert_with(|| monomial(&ranked.bases, rest));
+                    let r = rest_expr.get_or_insert_with(|| ranked.monomial(rest));
                     merged.push(merged_term(h, c, r));
                     used[p.index] = true;
                     used[q.index] = true;
