@@ -14,6 +14,20 @@ use std::collections::BTreeMap;
 
 /// One pass of `c R − c R cos² x → c R sin² x` over the terms of `e`; `None` if no pair matches.
 pub fn pythagoras(e: &Expr) -> Option<Expr> {
+    // Only a term with a squared cosine of an angle starts a pair: without one (most sums once
+    // their angles are contracted), the sum is not taken apart.
+    let squared_cosine = |(b, k): &(Expr, i64)| {
+        *k >= 2 && matches!(b.kind(), Kind::Fun(Func::Cos, x) if is_angle(x))
+    };
+    let Kind::Add(_, ts) = e.kind() else {
+        return None; // one term has no partner
+    };
+    if !ts
+        .iter()
+        .any(|(t, _)| matches!(t.kind(), Kind::Mul(_, fs) if fs.iter().any(squared_cosine)))
+    {
+        return None;
+    }
     let terms = Term::split(e);
     let by_monomial: BTreeMap<Expr, usize> = terms
         .iter()

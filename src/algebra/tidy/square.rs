@@ -22,18 +22,23 @@ use std::collections::BTreeMap;
 /// One pass of `2k R cos² A cos² B ∓ 2k R cos A cos B sin A sin B → k R cos²(A ± B) + k R (cos² A +
 /// cos² B − 1)` over the terms of `e`; `None` if no pair matches.
 pub fn square_sum(e: &Expr) -> Option<Expr> {
-    let terms = Term::split(e);
-    // Only a term with two squared cosines can start a pair: without one, the monomials are not
-    // indexed at all.
-    let squared_cosines = |t: &Term| {
-        t.factors
-            .iter()
+    // Only a term with two squared cosines can start a pair: without one, the sum is not taken
+    // apart (nor a single term, which has no partner).
+    let squared_cosines = |fs: &[(Expr, i64)]| {
+        fs.iter()
             .filter(|(b, k)| matches!(b.kind(), Kind::Fun(Func::Cos, x) if *k >= 2 && is_angle(x)))
             .count()
     };
-    if !terms.iter().any(|t| squared_cosines(t) >= 2) {
+    let Kind::Add(_, ts) = e.kind() else {
+        return None;
+    };
+    if !ts
+        .iter()
+        .any(|(t, _)| matches!(t.kind(), Kind::Mul(_, fs) if squared_cosines(fs) >= 2))
+    {
         return None;
     }
+    let terms = Term::split(e);
     let by_monomial: BTreeMap<Expr, usize> = terms
         .iter()
         .enumerate()
