@@ -9,8 +9,8 @@
 //! A sheet's tidying starts from polynomials ([`super::tidy_poly_by`]), and the first pass over
 //! one is the costly one (every single-angle product still there): [`contract_ranked`] takes its
 //! ranked terms straight from the polynomial ([`crate::algebra::Poly::ranked`], the ranking its
-//! conversion to an expression sorts by), and decides the other rules' first pass without taking
-//! the sum apart where it can. Every later pass ranks the sum's bases ([`rank_sum`]).
+//! conversion to an expression sorts by); the other rules look for their squared cosines before
+//! taking a sum apart. Every later pass ranks the sum's bases ([`rank_sum`]).
 
 use super::contract::{
     contractible, is_angle, merged_term, pass, rebuild_from, Candidate, ANGLE_IDENTITIES,
@@ -33,7 +33,7 @@ pub(super) fn contract_ranked(ranked: &Ranked) -> Expr {
     }
     let e = &ranked.to_expr();
     debug_assert!(contractible(e), "contractible as ranked terms and as a sum");
-    let first = square_sum_ranked(ranked, e)
+    let first = square_sum(e)
         .or_else(|| angle_sum_ranked(ranked, e))
         .or_else(|| pythagoras(e));
     debug_assert_eq!(
@@ -68,20 +68,6 @@ fn trig(base: &Expr) -> Option<(Func, &Expr)> {
         Kind::Fun(f, x) if is_angle(x) => Some((*f, x)),
         _ => None,
     }
-}
-
-/// [`square_sum`] of `e`: `None` without looking at `e` when no term has two squared cosines of
-/// angles (the rule's own precondition), which is the rule's answer then.
-fn square_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
-    let squared_cosine = |&(r, k): &(u32, i32)| {
-        k >= 2 && matches!(trig(&ranked.bases[r as usize]), Some((Func::Cos, _)))
-    };
-    ranked
-        .terms
-        .iter()
-        .any(|(factors, _)| factors.iter().filter(|f| squared_cosine(f)).count() >= 2)
-        .then(|| square_sum(e))
-        .flatten()
 }
 
 /// The candidates of one `(R, A, B)`: the other factors `R` by rank, the angles `A < B` by rank.
