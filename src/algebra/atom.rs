@@ -234,6 +234,42 @@ pub fn dense_index(id: AtomId) -> usize {
     (((id & SERIAL) as usize) << (32 - SHIFT)) | (id >> SHIFT) as usize
 }
 
+/// The distinct atoms of some factor lists `(atom, exponent)` (a few dozen among many more
+/// factors), in id order, and the length a table indexed by [`dense_index`] needs to hold each of
+/// them. Marked in such a table, not sorted and deduplicated: a polynomial names the same few atoms
+/// in every term.
+pub fn distinct<'a>(lists: impl IntoIterator<Item = &'a [(AtomId, i32)]>) -> (Vec<AtomId>, usize) {
+    thread_local! {
+        /// The marks, by dense index: all clear between calls (each call clears what it marked).
+        static SEEN: std::cell::RefCell<Vec<bool>> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+    SEEN.with_borrow_mut(|seen| {
+        // Every id handed out so far has a place: the serials below the interner's count, any class.
+        let len = INTERNER.read().expect("interner lock").atoms.len() << (32 - SHIFT);
+        if seen.len() < len {
+            seen.resize(len, false);
+        }
+        let mut out: Vec<AtomId> = Vec::new();
+        for list in lists {
+            for &(id, _) in list {
+                let s = dense_index(id);
+                if !seen[s] {
+                    seen[s] = true;
+                    out.push(id);
+                }
+            }
+        }
+        let mut table = 0;
+        for &id in &out {
+            let s = dense_index(id);
+            seen[s] = false;
+            table = table.max(s + 1);
+        }
+        out.sort_unstable();
+        (out, table)
+    })
+}
+
 /// What an id stands for (for `Sin`/`Cos` ids: the angle's symbol).
 pub fn lookup(id: AtomId) -> Atom {
     INTERNER.read().expect("interner lock").atoms[(id & SERIAL) as usize].clone()
@@ -274,6 +310,26 @@ fn pi_over(l: u64) -> Expr {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn distinct_atoms_come_once_in_id_order_and_every_call_starts_clear() {
+        let q = Symbol::q(2);
+        let (s, c, m) = (sin(&q), cos(&q), sym(&Symbol::new("m7")));
+        let lists: [&[(AtomId, i32)]; 3] = [&[(c, 2), (m, 1)], &[(s, 1), (c, 1)], &[]];
+        let (ids, table) = distinct(lists);
+        let mut want = vec![s, c, m];
+        want.sort_unstable();
+        assert_eq!(ids, want);
+        assert!(ids.iter().all(|&id| dense_index(id) < table));
+        assert_eq!(
+            table,
+            ids.iter().map(|&id| dense_index(id) + 1).max().unwrap()
+        );
+        // The marks of the first call are cleared: the same atoms are found again.
+        assert_eq!(distinct([&[(m, 3), (m, 1)][..]]).0, vec![m]);
+        assert_eq!(distinct(lists).0, want);
+        assert_eq!(distinct(std::iter::empty()), (vec![], 0));
+    }
 
     #[test]
     fn dense_indices_tell_a_symbol_from_its_sine_and_cosine() {

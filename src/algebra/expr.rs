@@ -779,6 +779,17 @@ fn cmp_factors(xs: &[(Expr, i64)], ys: &[(Expr, i64)]) -> Ordering {
     })
 }
 
+/// [`cmp_factors`] of `xs` and the one factor `b¹` (a base compared with a product), without
+/// building that list.
+fn cmp_factors_base(xs: &[(Expr, i64)], b: &Expr) -> Ordering {
+    match xs.first() {
+        None => Ordering::Less,
+        Some((a, i)) => cmp_base(a, b)
+            .then_with(|| 1.cmp(i))
+            .then_with(|| xs.len().cmp(&1)),
+    }
+}
+
 impl Ord for Expr {
     /// The canonical total order: numbers first; everything else as a product `c · Π b^e` compared by
     /// its factor list (bases by rank, then by name or structure), then by coefficient.
@@ -792,11 +803,11 @@ impl Ord for Expr {
             (_, Kind::Num(_)) => Ordering::Greater,
             (Kind::Mul(c, xs), Kind::Mul(d, ys)) => cmp_factors(xs, ys).then_with(|| c.cmp(d)),
             (Kind::Mul(c, xs), _) => {
-                cmp_factors(xs, &[(other.clone(), 1)]).then_with(|| c.cmp(&Rational::one()))
+                cmp_factors_base(xs, other).then_with(|| c.cmp(&Rational::one()))
             }
-            (_, Kind::Mul(d, ys)) => {
-                cmp_factors(&[(self.clone(), 1)], ys).then_with(|| Rational::one().cmp(d))
-            }
+            (_, Kind::Mul(d, ys)) => cmp_factors_base(ys, self)
+                .reverse()
+                .then_with(|| Rational::one().cmp(d)),
             _ => cmp_base(self, other),
         }
     }

@@ -38,31 +38,18 @@ fn plain(id: AtomId) -> bool {
 impl Ranks {
     /// Ranks for the atoms of `polys`, or `None` if one of them is not plain.
     pub fn of<'a, I: IntoIterator<Item = &'a Poly>>(polys: I) -> Option<Ranks> {
-        // The distinct atoms (a few dozen, among many more factors), marked by index.
-        let mut seen: Vec<bool> = Vec::new();
-        let mut ids: Vec<AtomId> = Vec::new();
-        for p in polys {
-            for (m, _) in p.terms() {
-                for &(id, _) in m.factors() {
-                    let s = atom::dense_index(id);
-                    if s >= seen.len() {
-                        seen.resize(s + 1, false);
-                    }
-                    if !seen[s] {
-                        seen[s] = true;
-                        ids.push(id);
-                    }
-                }
-            }
-        }
-        ids.sort_unstable();
+        let (ids, table) = atom::distinct(
+            polys
+                .into_iter()
+                .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors())),
+        );
         if !ids.iter().all(|&id| plain(id)) {
             return None;
         }
         let mut bases: Vec<(AtomId, Expr)> =
             ids.into_iter().map(|id| (id, atom::to_expr(id))).collect();
         bases.sort_by(|a, b| a.1.cmp(&b.1));
-        let mut of = vec![u32::MAX; seen.len()];
+        let mut of = vec![u32::MAX; table];
         for (r, (id, _)) in bases.iter().enumerate() {
             of[atom::dense_index(*id)] = r as u32;
         }
