@@ -39,6 +39,9 @@ pub struct Expr(Arc<Node>);
 
 struct Node {
     hash: u64,
+    /// The node's place among bases before its structure is looked at ([`order_key`]), computed
+    /// once here: comparing two parameters otherwise classes both names every time.
+    key: u8,
     kind: Kind,
 }
 
@@ -92,6 +95,7 @@ impl Expr {
         kind.hash(&mut h);
         Expr(Arc::new(Node {
             hash: h.finish(),
+            key: order_key(&kind),
             kind,
         }))
     }
@@ -692,8 +696,8 @@ fn primitive_base(b: &Expr) -> (Expr, Rational) {
 /// Rank of an expression used as a factor; it fixes the order in which factors print:
 /// numbers, square roots, π, masses, parenthesised sums, other parameters, coordinates, functions,
 /// q̇, q̈ — so `m2 (lc2^2 + l1 lc2 cos(q2))` and `(m1+m2+m3) g` read as in Spong.
-fn base_rank(e: &Expr) -> u8 {
-    match e.kind() {
+fn base_rank(kind: &Kind) -> u8 {
+    match kind {
         Kind::Num(_) => 0,
         Kind::Sqrt(_) => 1,
         Kind::Pi => 2,
@@ -706,6 +710,16 @@ fn base_rank(e: &Expr) -> u8 {
         Kind::Sym(Symbol::Coord { .. }) => 9,
         Kind::Mul(..) => 10,
     }
+}
+
+/// A base's [`base_rank`], and for a parameter its [`param_class`] after it: bases of different
+/// keys compare as their keys; two parameters of one key compare by name alone.
+fn order_key(kind: &Kind) -> u8 {
+    let class = match kind {
+        Kind::Sym(Symbol::Param(n)) => param_class(n),
+        _ => 0,
+    };
+    base_rank(kind) * 4 + class
 }
 
 /// The house order of parameter names: masses (`m…`) first, gravity `g` last, the rest naturally.
@@ -725,17 +739,18 @@ fn cmp_base(a: &Expr, b: &Expr) -> Ordering {
     if a == b {
         return Ordering::Equal;
     }
-    let (ra, rb) = (base_rank(a), base_rank(b));
-    if ra != rb {
-        return ra.cmp(&rb);
+    let (ka, kb) = (a.0.key, b.0.key);
+    if ka != kb {
+        return ka.cmp(&kb);
     }
     match (a.kind(), b.kind()) {
         (Kind::Num(x), Kind::Num(y)) => x.cmp(y),
         (Kind::Sqrt(x), Kind::Sqrt(y)) => x.cmp(y),
         (Kind::Pi, Kind::Pi) => Ordering::Equal,
-        (Kind::Sym(Symbol::Param(x)), Kind::Sym(Symbol::Param(y))) => param_class(x)
-            .cmp(&param_class(y))
-            .then_with(|| super::symbol::natural_cmp(x, y)),
+        // One key: one class.
+        (Kind::Sym(Symbol::Param(x)), Kind::Sym(Symbol::Param(y))) => {
+            super::symbol::natural_cmp(x, y)
+        }
         (Kind::Sym(x), Kind::Sym(y)) => x.cmp(y),
         (Kind::Fun(f, x), Kind::Fun(g, y)) => x.cmp(y).then(f.cmp(g)),
         (Kind::Add(c, xs), Kind::Add(d, ys)) => {
