@@ -145,23 +145,27 @@ pub const ANGLE_IDENTITIES: [AngleIdentity; 4] = [
 ];
 
 /// One term's part in a candidate pair: which term, its functions of `A` and `B`, its coefficient.
-pub(super) struct Candidate {
+pub(super) struct Candidate<'a> {
     /// The term's place in the sum.
     pub(super) index: usize,
     /// Its functions of `A` and of `B`.
     pub(super) funcs: (Func, Func),
     /// Its coefficient.
-    pub(super) coeff: Rational,
+    pub(super) coeff: &'a Rational,
 }
 
 impl AngleIdentity {
     /// The first term's coefficient `c` if the two candidates are the two sides of this identity
     /// (in either order).
-    pub(super) fn matching<'a>(&self, p: &'a Candidate, q: &'a Candidate) -> Option<&'a Rational> {
+    pub(super) fn matching<'a>(
+        &self,
+        p: &Candidate<'a>,
+        q: &Candidate<'a>,
+    ) -> Option<&'a Rational> {
         let sign = Rational::int(self.sign);
         [(p, q), (q, p)].into_iter().find_map(|(x, y)| {
-            (x.funcs == self.first && y.funcs == self.second && y.coeff == &x.coeff * &sign)
-                .then_some(&x.coeff)
+            (x.funcs == self.first && y.funcs == self.second && *y.coeff == x.coeff * &sign)
+                .then_some(x.coeff)
         })
     }
 

@@ -80,8 +80,10 @@ pub(super) fn rank_sum(e: &Expr) -> Option<Ranked<'_>> {
         return None;
     };
     // Each term's factors by first-seen index, then the indices ranked.
-    let mut index: FxHashMap<&Expr, u32> = FxHashMap::default();
-    let mut seen: Vec<&Expr> = Vec::new();
+    // A sum of the sheets names a few dozen bases at most.
+    let mut index: FxHashMap<&Expr, u32> =
+        FxHashMap::with_capacity_and_hasher(32, Default::default());
+    let mut seen: Vec<&Expr> = Vec::with_capacity(32);
     let mut terms: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(ts.len());
     for (t, c) in ts {
         let key = match t.kind() {
@@ -154,7 +156,9 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
             })
         })
         .collect();
-    let mut buckets: FxHashMap<Key, Vec<Candidate>> = FxHashMap::default();
+    // About two pairs of trig factors a term (sized once, not grown pass by pass).
+    let mut buckets: FxHashMap<Key, Vec<Candidate>> =
+        FxHashMap::with_capacity_and_hasher(2 * ranked.terms.len(), Default::default());
     for (index, (factors, coeff)) in ranked.terms.iter().enumerate() {
         let trig: Vec<(usize, Func, u32)> = factors
             .iter()
@@ -185,7 +189,7 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
                 buckets.entry((rest, a, b)).or_default().push(Candidate {
                     index,
                     funcs: (f, g),
-                    coeff: (*coeff).clone(),
+                    coeff,
                 });
             }
         }
