@@ -38,12 +38,16 @@ use std::sync::Arc;
 pub struct Expr(Arc<Node>);
 
 struct Node {
+    /// The node's hash in the low 58 bits, and in the top 6 its place among bases before its
+    /// structure is looked at ([`order_key`], below 64), both computed once in [`Expr::make`]:
+    /// comparing two parameters otherwise classes both names every time. (In one word, the node
+    /// stays 64 bytes.)
     hash: u64,
-    /// The node's place among bases before its structure is looked at ([`order_key`]), computed
-    /// once here: comparing two parameters otherwise classes both names every time.
-    key: u8,
     kind: Kind,
 }
+
+/// Where a node's [`order_key`] sits in its `hash` word.
+const KEY_SHIFT: u32 = 58;
 
 /// The elementary functions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -93,9 +97,9 @@ impl Expr {
         // multiply-rotate hash serves (the hash only speeds up equality and hash maps, never orders).
         let mut h = super::fast_hash::FxHasher::default();
         kind.hash(&mut h);
+        let key = u64::from(order_key(&kind));
         Expr(Arc::new(Node {
-            hash: h.finish(),
-            key: order_key(&kind),
+            hash: (h.finish() >> (64 - KEY_SHIFT)) | (key << KEY_SHIFT),
             kind,
         }))
     }
@@ -712,8 +716,8 @@ fn base_rank(kind: &Kind) -> u8 {
     }
 }
 
-/// A base's [`base_rank`], and for a parameter its [`param_class`] after it: bases of different
-/// keys compare as their keys; two parameters of one key compare by name alone.
+/// A base's [`base_rank`], and for a parameter its [`param_class`] after it (below 64): bases of
+/// different keys compare as their keys; two parameters of one key compare by name alone.
 fn order_key(kind: &Kind) -> u8 {
     let class = match kind {
         Kind::Sym(Symbol::Param(n)) => param_class(n),
@@ -739,7 +743,7 @@ fn cmp_base(a: &Expr, b: &Expr) -> Ordering {
     if a == b {
         return Ordering::Equal;
     }
-    let (ka, kb) = (a.0.key, b.0.key);
+    let (ka, kb) = (a.0.hash >> KEY_SHIFT, b.0.hash >> KEY_SHIFT);
     if ka != kb {
         return ka.cmp(&kb);
     }
@@ -1049,6 +1053,38 @@ mod tests {
         let pi2 = &Expr::pi() * &half;
         assert_eq!(Expr::cos(&(&x() + &pi2)), -Expr::sin(&x()));
         assert_eq!(Expr::cos(&(&Expr::pi() * &Expr::frac(1, 3).unwrap())), half);
+    }
+
+    /// The order key fits the hash word's top bits, and parameters order by class, then name:
+    /// masses first, `g` last, numbers in names by value.
+    #[test]
+    fn the_order_key_fits_its_bits_and_orders_parameters_by_class() {
+        assert_eq!(std::mem::size_of::<Node>(), 64, "a node is one cache line");
+        let names = [
+            "m2", "m10", "m_1", "I1", "a2", "lc10", "lc2", "g", "Xi3", "mu",
+        ];
+        for n in names {
+            assert!(u32::from(order_key(Expr::symbol(n).kind())) < 1 << (64 - KEY_SHIFT));
+        }
+        let mut bases: Vec<Expr> = names.iter().map(|n| Expr::symbol(n)).collect();
+        bases.push(Expr::q(1));
+        bases.push(Expr::cos(&Expr::q(1)));
+        bases.push(Expr::symbol("a1") + Expr::symbol("a2"));
+        for b in &bases {
+            assert!(u32::from(order_key(b.kind())) < 1 << (64 - KEY_SHIFT));
+        }
+        let mut sorted: Vec<Expr> = bases.clone();
+        sorted.sort_by(cmp_base);
+        let text: Vec<String> = sorted.iter().map(|e| e.to_string()).collect();
+        // Masses (m…; a digit sorts before `_`), the sum, other parameters naturally, g, then q1
+        // and cos q1.
+        assert_eq!(
+            text,
+            [
+                "m2", "m10", "m_1", "a1 + a2", "I1", "Xi3", "a2", "lc2", "lc10", "mu", "g", "q1",
+                "cos(q1)"
+            ]
+        );
     }
 
     #[test]

@@ -825,7 +825,7 @@ impl Poly {
     /// each term's factors sorted by rank, and the terms sorted once, on these numbers instead of
     /// on the expressions ([`cmp_ranked`]).
     pub(crate) fn ranked(&self) -> Option<Ranked<'_>> {
-        let (atoms, table) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
+        let (atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
         let mut bases = Vec::with_capacity(atoms.len());
         for &id in &atoms {
             let e = atom::to_expr(id);
@@ -840,11 +840,13 @@ impl Poly {
         // rank[i]: the place of atoms[i]'s expression in the total order.
         let mut order: Vec<usize> = (0..atoms.len()).collect();
         order.sort_by(|&a, &b| bases[a].cmp(&bases[b]));
-        // By dense index (atom::dense_index): the rank of each atom.
-        let mut rank = vec![u32::MAX; table];
+        // The rank of each atom, by its place among the distinct atoms (not by dense index: a
+        // polynomial of a few atoms may name one interned late, with a large index).
+        let mut rank = vec![0u32; atoms.len()];
         for (r, &i) in order.iter().enumerate() {
-            rank[atom::dense_index(atoms[i])] = r as u32;
+            rank[i] = r as u32;
         }
+        let index = |id: AtomId| atoms.binary_search(&id).expect("collected above");
         let mut constant = Rational::zero();
         let mut keyed: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(self.terms.len());
         for (m, c) in &self.terms {
@@ -853,9 +855,7 @@ impl Poly {
                 continue;
             }
             let mut key: Vec<(u32, i32)> =
-                m.0.iter()
-                    .map(|&(id, e)| (rank[atom::dense_index(id)], e))
-                    .collect();
+                m.0.iter().map(|&(id, e)| (rank[index(id)], e)).collect();
             key.sort_unstable_by_key(|&(r, _)| r);
             keyed.push((key, c));
         }
