@@ -205,15 +205,20 @@ fn flat_terms(terms: &[Expr]) -> Vec<Expr> {
 }
 
 /// Terms with their LaTeX ([`term_string`]), as [`Layout::lines`] lays them out.
-fn printed(terms: Vec<Expr>) -> Vec<(Expr, String)> {
+fn printed(terms: Vec<Expr>) -> Vec<Printed> {
     terms
         .into_iter()
         .map(|t| {
             let s = term_string(&t);
-            (t, s)
+            let w = width(&s);
+            (t, s, w)
         })
         .collect()
 }
+
+/// A display term, its LaTeX and the LaTeX's [`width`]: measured where it is printed (for the
+/// prepared vectors and equations, on the thread that prepared them), not again by the layout.
+type Printed = (Expr, String, usize);
 
 /// A vector's components in their display form, printed ahead of the layout: measured whole, and
 /// printed term by term when the vector is too wide for one line (what [`Layout::vector_prepared`]
@@ -233,7 +238,7 @@ enum VectorLayout {
     /// On one line: each component's LaTeX.
     Line(Vec<String>),
     /// Component by component: each component's terms with their LaTeX.
-    Components(Vec<Vec<(Expr, String)>>),
+    Components(Vec<Vec<Printed>>),
 }
 
 impl PreparedVector {
@@ -290,7 +295,7 @@ pub struct PreparedEquation {
 #[derive(Clone, Debug)]
 enum Left {
     /// Terms in the house style, each with its LaTeX ([`printed`]), laid out by [`Layout::lines`].
-    Terms(Vec<(Expr, String)>),
+    Terms(Vec<Printed>),
     /// Display terms of a large side, printed and measured.
     Measured(Arc<MeasuredSum>),
 }
@@ -472,7 +477,7 @@ impl PreparedEquation {
         };
         let bytes = rhs.len()
             + match &left {
-                Left::Terms(terms) => terms.iter().map(|(_, s)| s.len() + 3).sum(),
+                Left::Terms(terms) => terms.iter().map(|(_, s, _)| s.len() + 3).sum(),
                 Left::Measured(terms) => measured_bytes(terms),
             };
         PreparedEquation {
@@ -550,7 +555,7 @@ impl Layout {
     fn printed_terms(
         &mut self,
         lhs: Option<&str>,
-        terms: Vec<(Expr, String)>,
+        terms: Vec<Printed>,
         rhs: Option<&str>,
     ) -> String {
         let mut later: Vec<(String, Expr)> = Vec::new();
@@ -596,13 +601,13 @@ impl Layout {
     /// abbreviated, and the abbreviation's name and value are pushed onto `later`. No terms are `0`.
     fn lines(
         &mut self,
-        terms: Vec<(Expr, String)>,
+        terms: Vec<Printed>,
         room: usize,
         later: &mut Vec<(String, Expr)>,
     ) -> Vec<String> {
         let pieces: Vec<(String, usize)> = terms
             .into_iter()
-            .map(|(t, s)| self.fit_term(&t, s, room, later))
+            .map(|(t, s, w)| self.fit_term(&t, s, w, room, later))
             .collect();
         let mut lines: Vec<String> = Vec::new();
         let mut line = String::new();
@@ -850,10 +855,10 @@ impl Layout {
         &mut self,
         t: &Expr,
         s: String,
+        w: usize,
         room: usize,
         later: &mut Vec<(String, Expr)>,
     ) -> (String, usize) {
-        let w = width(&s);
         if w <= room {
             return (s, w);
         }
