@@ -1,6 +1,7 @@
 //! Deterministic work sharing: [`map`] applies a pure function to many items on a few threads and
 //! returns the results in the items' order, so whatever is built or printed from them is the same on
-//! any number of threads. The derivation ([`crate::dynamics::lagrange`]: the Christoffel symbols, `τ`,
+//! any number of threads; [`share`] runs a worker loop on a few threads, for work whose results
+//! are taken one by one as they are ready (the sheet's vectors). The derivation ([`crate::dynamics::lagrange`]: the Christoffel symbols, `τ`,
 //! `C`) and the display layer ([`crate::print::parallel`]) share it.
 //!
 //! What may run here must be pure. It may intern new atoms only where their ids order nothing that
@@ -104,6 +105,23 @@ pub fn map<T: Sync, R: Send>(
     done.into_iter().map(|(_, r)| r).collect()
 }
 
+/// Runs `work` on up to [`threads`] threads at once, each its own call (`work` takes its items from
+/// a queue of its own until none is left), when `total`, the work's estimated weight as for [`map`],
+/// is at least `min_total`; once on the calling thread otherwise, and always inside [`serially`].
+/// The calling thread only waits, as in [`map`].
+pub fn share(total: usize, min_total: usize, work: impl Fn() + Sync) {
+    let threads = threads();
+    if total < min_total || threads < 2 || SERIAL.with(|s| s.get()) {
+        work();
+        return;
+    }
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(&work);
+        }
+    });
+}
+
 /// About a third of a millisecond of work (the items' weights, in units of about 3 ns): below it
 /// a job stays on the calling thread, since starting a thread costs a few hundred microseconds here.
 pub const WORTH_SHARING: usize = 100_000;
@@ -123,6 +141,27 @@ mod tests {
         // Below the threshold: on this thread, the same.
         assert_eq!(map(&items, |_| 1, usize::MAX, work), want);
         assert!(map(&[] as &[u64], |_| 1, 0, work).is_empty());
+    }
+
+    #[test]
+    fn share_runs_the_work_until_its_queue_is_empty_on_this_thread_below_the_threshold() {
+        let items: Vec<u64> = (0..500).collect();
+        let next = AtomicUsize::new(0);
+        let total = std::sync::atomic::AtomicU64::new(0);
+        let work = || loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            let Some(x) = items.get(k) else { break };
+            total.fetch_add(*x, Ordering::Relaxed);
+        };
+        share(usize::MAX, 0, work);
+        assert_eq!(total.load(Ordering::Relaxed), items.iter().sum::<u64>());
+        // Below the threshold, or inside `serially`: once, on this thread.
+        let here = std::thread::current().id();
+        let calls = std::sync::Mutex::new(Vec::new());
+        let record = || calls.lock().unwrap().push(std::thread::current().id());
+        share(0, 1, record);
+        serially(|| share(usize::MAX, 0, record));
+        assert_eq!(*calls.lock().unwrap(), vec![here, here]);
     }
 
     #[test]

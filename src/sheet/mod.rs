@@ -130,9 +130,11 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // The proofs of the last section take about as long as all the others on a large robot, and
     // depend on nothing they print: they run on a thread of their own meanwhile. The display forms
     // of the Newton–Euler vectors (most of an expanded sheet's work) are tidied on threads of their
-    // own from the start too, while the scene and Euler–Lagrange sections are written; that thread
-    // starts first, since it is the longest (the SCARA arm's sheet, measured: 15.2 → 13.7 ms, its
-    // tidying no longer waiting for the expanded D of `compact_mode` on this thread). Neither when
+    // own from the start too, while the scene and Euler–Lagrange sections are written, in the order
+    // the sections print them, each laid out as soon as it is tidied. That thread starts first,
+    // since it is the longest (the SCARA arm's sheet, measured: 15.2 → 13.7 ms, its tidying no
+    // longer waiting for the expanded D of `compact_mode` on this thread; 14.2 → 13.0 ms more with
+    // the layout following the tidying vector by vector instead of after all of it). Neither when
     // the display layer is held to one thread (`parallel::set_threads`) or the robot has fewer than
     // three revolute joints: the PPP, RPP and elbow arms prove and tidy in less time than a thread
     // takes to start.
@@ -140,47 +142,57 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     let frames = opts.frames();
     if crate::parallel::threads() < 2 || der.robot().revolute_joints() < 3 {
         let compact = compact_mode(der);
-        let tidied = || {
-            if compact {
-                Default::default()
-            } else {
-                newton_euler::tidy_vectors(der, &frames)
-            }
-        };
-        return document(der, opts, compact, tidied, || full.then(|| agreement(der)));
+        let tidied = (!compact && !frames.is_empty()).then(|| {
+            let t = newton_euler::Tidied::new(der, &frames);
+            t.work();
+            t
+        });
+        return document(der, opts, compact, tidied.as_ref(), || {
+            full.then(|| agreement(der))
+        });
     }
     // Decided once, by whichever thread asks first (an arm of up to four joints reads its
-    // expanded D).
+    // expanded D); the vectors likewise, listed by the tidying thread or, should it not have
+    // started, by the layout.
     let compact = std::sync::OnceLock::new();
     let compact = &compact;
+    let vectors: std::sync::OnceLock<Option<newton_euler::Tidied>> = std::sync::OnceLock::new();
+    let vectors = &vectors;
     std::thread::scope(|scope| {
         let is_compact = move || *compact.get_or_init(|| compact_mode(der));
-        // The tidying is the longest of the three: it starts first.
-        let tidied = (!frames.is_empty()).then(|| {
-            let frames = &frames;
-            scope.spawn(move || (!is_compact()).then(|| newton_euler::tidy_vectors(der, frames)))
-        });
+        let frames = &frames;
+        let listed = move || {
+            vectors.get_or_init(|| (!is_compact()).then(|| newton_euler::Tidied::new(der, frames)))
+        };
+        // The tidying is the longest of the three: it starts first, and the layout takes each
+        // vector as it is tidied.
+        if !frames.is_empty() {
+            scope.spawn(move || {
+                if let Some(t) = listed() {
+                    t.work();
+                }
+            });
+        }
         let proofs = full.then(|| scope.spawn(|| agreement(der)));
         let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
         let compact = is_compact();
-        let tidied = move || {
-            tidied.map_or_else(Default::default, |h| {
-                h.join()
-                    .expect("the tidying thread does not panic")
-                    .unwrap_or_default()
-            })
+        let tidied = if frames.is_empty() {
+            None
+        } else {
+            listed().as_ref()
         };
         document(der, opts, compact, tidied, proofs)
     })
 }
 
-/// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` and the
-/// agreement section from `proofs` (each called once, when it is due).
+/// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` (waited for
+/// vector by vector, as they are laid out) and the agreement section from `proofs` (called once,
+/// when it is due).
 fn document(
     der: &Derivation,
     opts: &SheetOptions,
     compact: bool,
-    tidied: impl FnOnce() -> newton_euler::Tidied,
+    tidied: Option<&newton_euler::Tidied>,
     proofs: impl FnOnce() -> Option<String>,
 ) -> String {
     let mut lay = Layout::new();
@@ -201,17 +213,11 @@ fn document(
             (true, scope) => lagrange_compact::section(der, &mut lay, scope == Scope::Brief),
         });
     }
-    let frames = opts.frames();
-    let mut tidied = if frames.is_empty() {
-        Default::default()
-    } else {
-        tidied()
-    };
-    for frame in frames {
+    for frame in opts.frames() {
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, &mut lay)
         } else {
-            newton_euler::section(der, frame, &mut lay, &mut tidied, &mut sides)
+            newton_euler::section(der, frame, &mut lay, tidied, &mut sides)
         });
     }
     match proofs() {

@@ -8,9 +8,10 @@ use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Poly};
 use crate::dynamics::vec3::Vec3;
 use crate::dynamics::{Convention, Derivation, Frame, JointKind};
-use crate::print::parallel;
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
 
 fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
     v.0.iter().map(Poly::to_expr).collect()
@@ -22,14 +23,135 @@ fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
 /// minutes. The equations of motion are always printed in full; the numeric PUMA 560 stays below it.
 const MAX_TERMS: usize = 1000;
 
-/// The display form (tidied, [`Grouping::Leading`]) of the vectors of the Newton–Euler sections,
-/// by frame and name, computed before the sections are laid out: tidying is most of a sheet's work,
-/// and the vectors are independent, so they are tidied on several threads
-/// ([`crate::print::parallel::map`]); the layout, which numbers abbreviations, stays in order.
-#[derive(Default)]
-pub(super) struct Tidied(HashMap<(Frame, String), PreparedVector>);
+/// The display forms (tidied, [`Grouping::Leading`]) of the vectors of the Newton–Euler sections:
+/// tidying is most of a sheet's work, and the vectors are independent, so they are tidied on
+/// threads of their own while the document is laid out. Workers take the vectors in the order the
+/// sections print them, and the layout (which numbers abbreviations, so stays in order) waits for
+/// each one only when it is due: the body-fixed section is laid out while the inertial frame is
+/// still being tidied.
+///
+/// A component equal to one met before (`g_i` is the same vector for every link in the inertial
+/// frame; a prismatic arm's `a_c,i` and `a_e,i` often agree) is tidied once: the display form is a
+/// function of the polynomial alone, and a later vector waits for the earlier one's.
+pub(super) struct Tidied<'d> {
+    /// The vectors, in the order the sections print them.
+    jobs: Vec<Job<'d>>,
+    /// For each component of several terms met before, where: (job, component).
+    earlier: Vec<[Option<(usize, usize)>; 3]>,
+    /// Each vector's display form once tidied (`Err` if its worker panicked).
+    slots: Vec<OnceLock<Result<PreparedVector, ()>>>,
+    /// The next job to take.
+    next: AtomicUsize,
+    /// Each job's place, by frame and name.
+    place: HashMap<(Frame, String), usize>,
+}
 
-/// The vectors a section prints for `frame`, with their names, in order.
+impl<'d> Tidied<'d> {
+    /// The vectors of the sections of `frames` (each short enough to print), none tidied yet.
+    pub(super) fn new(der: &'d Derivation, frames: &[Frame]) -> Tidied<'d> {
+        let jobs: Vec<Job> = frames
+            .iter()
+            .flat_map(|&frame| {
+                vectors(der, frame)
+                    .into_iter()
+                    .map(move |(name, v)| (frame, name, v))
+            })
+            .filter(|(_, _, v)| longest(v) <= MAX_TERMS)
+            .collect();
+        let mut first: FxHashMap<&Poly, (usize, usize)> = FxHashMap::default();
+        let earlier = jobs
+            .iter()
+            .enumerate()
+            .map(|(j, (_, _, v))| {
+                std::array::from_fn(|k| {
+                    let c = &v.0[k];
+                    if c.len() <= 1 {
+                        return None;
+                    }
+                    match first.entry(c) {
+                        Entry::Occupied(e) => Some(*e.get()),
+                        Entry::Vacant(e) => {
+                            e.insert((j, k));
+                            None
+                        }
+                    }
+                })
+            })
+            .collect();
+        let place = jobs
+            .iter()
+            .enumerate()
+            .map(|(j, (frame, name, _))| ((*frame, name.clone()), j))
+            .collect();
+        Tidied {
+            slots: jobs.iter().map(|_| OnceLock::new()).collect(),
+            jobs,
+            earlier,
+            next: AtomicUsize::new(0),
+            place,
+        }
+    }
+
+    /// Tidies the vectors on up to [`crate::parallel::threads`] threads (tidying costs about the
+    /// square of a component's terms; below ~100 000 in all, on this thread), until none is left.
+    pub(super) fn work(&self) {
+        let weight = self
+            .jobs
+            .iter()
+            .map(|(_, _, v)| v.0.iter().map(|c| c.len() * c.len()).sum::<usize>())
+            .sum();
+        crate::parallel::share(weight, 100_000, || self.take());
+    }
+
+    /// Takes vectors in order and tidies each until none is left.
+    fn take(&self) {
+        loop {
+            let j = self.next.fetch_add(1, Ordering::Relaxed);
+            let Some((_, name, v)) = self.jobs.get(j) else {
+                return;
+            };
+            let prepared = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let shown: Vec<Expr> =
+                    v.0.iter()
+                        .zip(&self.earlier[j])
+                        .map(|(c, before)| match before {
+                            None => c.tidy_by(Grouping::Leading),
+                            Some((i, k)) => self.wait(*i).shown()[*k].clone(),
+                        })
+                        .collect();
+                PreparedVector::new(name, shown)
+            }));
+            match prepared {
+                Ok(p) => {
+                    let _ = self.slots[j].set(Ok(p));
+                }
+                Err(panic) => {
+                    // Whoever waits for it (the layout, a later vector) panics too, not waits.
+                    let _ = self.slots[j].set(Err(()));
+                    std::panic::resume_unwind(panic);
+                }
+            }
+        }
+    }
+
+    /// Job `j`'s display form, once tidied.
+    fn wait(&self, j: usize) -> &PreparedVector {
+        self.slots[j]
+            .wait()
+            .as_ref()
+            .expect("tidying a Newton–Euler vector does not panic")
+    }
+
+    /// The display form of `name` in `frame`, once tidied; `None` for a vector not tidied here.
+    fn get(&self, frame: Frame, name: &str) -> Option<PreparedVector> {
+        let &j = self.place.get(&(frame, name.to_string()))?;
+        Some(self.wait(j).clone())
+    }
+}
+
+/// The vectors a section prints for `frame`, with their names, in the order it prints them: the
+/// forward recursion link by link (the payload's `a_c,L` after the last link's), then the backward
+/// recursion from the last link to the first.
 fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
     let ne = der.newton_euler(frame);
     let n = der.robot().dof();
@@ -41,114 +163,22 @@ fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
         out.push((format!("a_{{c,{k}}}"), &ne.a_c[i]));
         out.push((format!("a_{{e,{k}}}"), &ne.a_e[i]));
         out.push((format!("g_{{{k}}}"), &ne.g[i]));
+        if let (true, Some(a)) = (k == n, &ne.a_payload) {
+            out.push(("a_{c,L}".to_string(), a));
+        }
+    }
+    for i in (0..n).rev() {
+        let k = i + 1;
         out.push((format!("f_{{{k}}}"), &ne.f[i]));
         if let Some(m) = &ne.n[i] {
             out.push((format!("n_{{{k}}}"), m));
         }
     }
-    if let Some(a) = &ne.a_payload {
-        out.push(("a_{c,L}".to_string(), a));
-    }
     out
-}
-
-/// [`Tidied`] for the sections of `frames` (each vector short enough to print).
-///
-/// A component equal to one met before (`g_i` is the same vector for every link in the inertial
-/// frame; a prismatic arm's `a_c,i` and `a_e,i` often agree) is tidied once: the display form is a
-/// function of the polynomial alone.
-pub(super) fn tidy_vectors(der: &Derivation, frames: &[Frame]) -> Tidied {
-    let jobs: Vec<Job> = frames
-        .iter()
-        .flat_map(|&frame| {
-            vectors(der, frame)
-                .into_iter()
-                .map(move |(name, v)| (frame, name, v))
-        })
-        .filter(|(_, _, v)| longest(v) <= MAX_TERMS)
-        .collect();
-    // For each component of several terms met before, where: (job, component).
-    let mut first: FxHashMap<&Poly, (usize, usize)> = FxHashMap::default();
-    let earlier: Vec<[Option<(usize, usize)>; 3]> = jobs
-        .iter()
-        .enumerate()
-        .map(|(j, (_, _, v))| {
-            std::array::from_fn(|k| {
-                let c = &v.0[k];
-                if c.len() <= 1 {
-                    return None;
-                }
-                match first.entry(c) {
-                    Entry::Occupied(e) => Some(*e.get()),
-                    Entry::Vacant(e) => {
-                        e.insert((j, k));
-                        None
-                    }
-                }
-            })
-        })
-        .collect();
-    let items: Vec<(usize, &Job)> = jobs.iter().enumerate().collect();
-    // Tidying costs about the square of a component's terms; below ~100 000 in all, one thread.
-    // A vector with every component its own is prepared on the thread that tidied it; one that
-    // repeats a component is prepared after, from the component's first display form.
-    let done = parallel::map(
-        &items,
-        |(_, (_, _, v))| v.0.iter().map(|c| c.len() * c.len()).sum(),
-        100_000,
-        |&(j, (_, name, v))| {
-            let shown: Vec<Option<Expr>> =
-                v.0.iter()
-                    .zip(&earlier[j])
-                    .map(|(c, before)| before.is_none().then(|| c.tidy_by(Grouping::Leading)))
-                    .collect();
-            if shown.iter().all(Option::is_some) {
-                Prepared::Done(PreparedVector::new(
-                    name,
-                    shown.into_iter().flatten().collect(),
-                ))
-            } else {
-                Prepared::Partly(shown)
-            }
-        },
-    );
-    let mut out: Vec<PreparedVector> = Vec::with_capacity(done.len());
-    for (j, d) in done.into_iter().enumerate() {
-        let vector = match d {
-            Prepared::Done(p) => p,
-            Prepared::Partly(shown) => {
-                let shown = shown
-                    .into_iter()
-                    .zip(&earlier[j])
-                    .map(|(e, before)| match (e, before) {
-                        (Some(e), _) => e,
-                        (None, Some((i, k))) => out[*i].shown()[*k].clone(),
-                        (None, None) => unreachable!("a component is tidied or met before"),
-                    })
-                    .collect();
-                PreparedVector::new(&jobs[j].1, shown)
-            }
-        };
-        out.push(vector);
-    }
-    Tidied(
-        jobs.into_iter()
-            .zip(out)
-            .map(|((frame, name, _), e)| ((frame, name), e))
-            .collect(),
-    )
 }
 
 /// A vector to tidy: its frame, its name and its value.
 type Job<'d> = (Frame, String, &'d Vec3<Poly>);
-
-/// A vector tidied on a worker: prepared, or its components tidied except those met before.
-enum Prepared {
-    /// Every component was its own: tidied and prepared.
-    Done(PreparedVector),
-    /// The components tidied here; `None` for one met before, filled in afterwards.
-    Partly(Vec<Option<Expr>>),
-}
 
 /// The most terms of a component of `v`.
 fn longest(v: &Vec3<Poly>) -> usize {
@@ -159,7 +189,7 @@ fn longest(v: &Vec3<Poly>) -> usize {
 /// its display form from `tidied` when there (else tidied here).
 fn vector(
     lay: &mut Layout,
-    tidied: &mut Tidied,
+    tidied: Option<&Tidied>,
     frame: Frame,
     name: &str,
     v: &Vec3<Poly>,
@@ -173,7 +203,7 @@ fn vector(
     }
     let base = name.to_string();
     let component = move |k: usize| format!("({base})_{{{}}}", ["x", "y", "z"][k]);
-    match tidied.0.remove(&(frame, name.to_string())) {
+    match tidied.and_then(|t| t.get(frame, name)) {
         Some(shown) => lay.vector_prepared(name, shown, &component),
         None => lay.vector(name, &v.0, &component, Grouping::Leading),
     }
@@ -203,7 +233,7 @@ pub(super) fn section(
     der: &Derivation,
     frame: Frame,
     lay: &mut Layout,
-    tidied: &mut Tidied,
+    tidied: Option<&Tidied>,
     sides: &mut super::lagrange::Sides,
 ) -> String {
     let robot = der.robot();
@@ -381,8 +411,9 @@ pub(super) fn section(
 mod tests {
     use super::*;
 
-    /// Tidying each distinct component once gives every vector what tidying it alone gives, on
-    /// arms whose vectors repeat components (the gravity vectors in the inertial frame).
+    /// Tidying each distinct component once (on the workers of `Tidied::work`, a repeated one
+    /// waiting for its first) gives every vector what tidying it alone gives, on arms whose vectors
+    /// repeat components (the gravity vectors in the inertial frame).
     #[test]
     fn components_met_before_are_shown_as_when_tidied_alone() {
         for name in ["rpp", "scara"] {
@@ -391,13 +422,14 @@ mod tests {
             let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
             let der = Derivation::new(scene.robot).unwrap();
             let frames = [Frame::Body, Frame::Inertial];
-            let tidied = tidy_vectors(&der, &frames);
+            let tidied = Tidied::new(&der, &frames);
+            tidied.work();
             let mut seen = std::collections::HashSet::new();
             let mut repeated = 0;
             for frame in frames {
                 for (label, v) in vectors(&der, frame) {
-                    let shown = tidied.0[&(frame, label.clone())].shown();
-                    for (c, s) in v.0.iter().zip(shown) {
+                    let prepared = tidied.get(frame, &label).expect("every vector is tidied");
+                    for (c, s) in v.0.iter().zip(prepared.shown()) {
                         assert_eq!(&c.tidy_by(Grouping::Leading), s, "{name} {label}");
                         repeated += usize::from(c.len() > 1 && !seen.insert(c.clone()));
                     }
