@@ -38,7 +38,7 @@ pub(super) struct Tidied<'d> {
     jobs: Vec<Job<'d>>,
     /// For each component of several terms met before, where: (job, component).
     earlier: Vec<[Option<(usize, usize)>; 3]>,
-    /// Each vector's display form once tidied (`Err` if its worker panicked).
+    /// Each vector's display form once tidied (`Err` once a worker panicked).
     slots: Vec<OnceLock<Result<PreparedVector, ()>>>,
     /// The next job to take.
     next: AtomicUsize,
@@ -126,8 +126,11 @@ impl<'d> Tidied<'d> {
                     let _ = self.slots[j].set(Ok(p));
                 }
                 Err(panic) => {
-                    // Whoever waits for it (the layout, a later vector) panics too, not waits.
-                    let _ = self.slots[j].set(Err(()));
+                    // Whoever waits for this vector or any not tidied yet (the layout, a later
+                    // vector) panics too, rather than waiting for ever.
+                    for slot in &self.slots {
+                        let _ = slot.set(Err(()));
+                    }
                     std::panic::resume_unwind(panic);
                 }
             }
