@@ -27,7 +27,7 @@ fn documents_are_serde_jsons_pretty_text() {
             let want = serde_json::to_string_pretty(&doc).expect("JSON");
             assert!(want.len() > 1000, "{example}: a real document");
             assert_eq!(report::to_pretty(&doc), want, "{example} {method:?}");
-            // What `derive --format json` writes: the document printed stage by stage and written
+            // What `derive --format json` writes: the document printed (on several threads) and written
             // in pieces, without the Value; the same text and a line end.
             let text = report::json_text(&der, method);
             assert_eq!(text, format!("{want}\n"), "{example} {method:?}");

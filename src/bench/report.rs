@@ -277,8 +277,8 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("run side by side (on a machine whose speed drifts, medians taken minutes apart would not). ");
         s.push_str("`derive ÷ EL` is the whole `derive` process (Euler–Lagrange, printed in full) in text, LaTeX and JSON ");
         s.push_str("over the expanded Euler–Lagrange derivation alone (D, c_ijk, C, g, τ and K), in process (table above; ");
-        s.push_str("`derive` derives what it prints: the equations need D, c_ijk, g and τ, the JSON document C too, ");
-        s.push_str("and a large robot's document is printed stage by stage on a second thread while the next is derived): the cost of starting, ");
+        s.push_str("`derive` derives what it prints: the equations need D, c_ijk, g and τ; the JSON document ");
+        s.push_str("prints C from the c_ijk without expanding it): the cost of starting, ");
         s.push_str("reading the scene and printing, as a multiple of deriving (a process that does nothing, `symdyn ");
         s.push_str("--version`, takes the time in the PPP table below, which is most of a small robot's `derive`); ");
         s.push_str("`derive ÷ check` the same processes over the whole `symdyn check` process (which derives by ");

@@ -38,11 +38,16 @@ fn plain(id: AtomId) -> bool {
 impl Ranks {
     /// Ranks for the atoms of `polys`, or `None` if one of them is not plain.
     pub fn of<'a, I: IntoIterator<Item = &'a Poly>>(polys: I) -> Option<Ranks> {
-        let (ids, table) = atom::distinct(
+        Ranks::of_lists(
             polys
                 .into_iter()
                 .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors())),
-        );
+        )
+    }
+
+    /// Ranks for the atoms of some monomials' factor lists, or `None` if one of them is not plain.
+    pub fn of_lists<'a>(lists: impl IntoIterator<Item = &'a [(AtomId, i32)]>) -> Option<Ranks> {
+        let (ids, table) = atom::distinct(lists);
         if !ids.iter().all(|&id| plain(id)) {
             return None;
         }
@@ -500,7 +505,58 @@ impl<'a> Renderer<'a> {
             buf[start..].sort_unstable_by_key(|&(r, _)| r);
             terms.push((start, buf.len(), c));
         }
-        sort_terms(&mut terms, &buf);
+        self.sorted_sum(&buf, terms, constant, nested)
+    }
+
+    /// The canonical sum of `Σ_i p_i x_i`, printed as [`Renderer::sum`] prints its expansion, which
+    /// it never builds: `C(q, q̇)`'s `c_kj = Σ_i c_ijk q̇_i` from the Christoffel symbols. When the
+    /// atoms `x_i` are distinct and no monomial of `p_i` holds `x_i`, the expansion is each term of
+    /// each `p_i` times its `x_i` (no two share a monomial, so nothing merges); `None` when a
+    /// monomial holds its `x_i` after all. Every `x_i` of a non-zero `p_i` must have been ranked.
+    pub fn sum_of_multiples(&mut self, parts: &[(&Poly, AtomId)], nested: bool) -> Option<String> {
+        debug_assert!(
+            parts
+                .iter()
+                .enumerate()
+                .all(|(i, (_, x))| parts[..i].iter().all(|(_, y)| y != x)),
+            "the multipliers are distinct"
+        );
+        let len: usize = parts.iter().map(|(p, _)| p.len()).sum();
+        let mut buf: Vec<(u32, i32)> = Vec::with_capacity(
+            len + parts
+                .iter()
+                .flat_map(|(p, _)| p.terms())
+                .map(|(m, _)| m.factors().len())
+                .sum::<usize>(),
+        );
+        let mut terms: Vec<(usize, usize, &Rational)> = Vec::with_capacity(len);
+        for &(p, x) in parts.iter().filter(|(p, _)| !p.is_zero()) {
+            let x = self.ranks.rank(x);
+            for (m, c) in p.terms() {
+                let start = buf.len();
+                buf.extend(m.factors().iter().map(|&(id, e)| (self.ranks.rank(id), e)));
+                buf.push((x, 1));
+                let list = &mut buf[start..];
+                list.sort_unstable_by_key(|&(r, _)| r);
+                if list.windows(2).any(|w| w[0].0 == w[1].0) {
+                    return None;
+                }
+                terms.push((start, buf.len(), c));
+            }
+        }
+        Some(self.sorted_sum(&buf, terms, None, nested))
+    }
+
+    /// The sum of `terms` (ranges of `buf`, each a factor list by rank, and a coefficient) in the
+    /// canonical order, then the constant term, printed.
+    fn sorted_sum<'c>(
+        &mut self,
+        buf: &[(u32, i32)],
+        mut terms: Vec<(usize, usize, &'c Rational)>,
+        constant: Option<&'c Rational>,
+        nested: bool,
+    ) -> String {
+        sort_terms(&mut terms, buf);
         if let Some(c) = constant {
             terms.push((0, 0, c));
         }
@@ -744,5 +800,50 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_sum_of_multiples_prints_as_its_expansion() {
+        // The multipliers rank after the factors (q̇, as in C(q, q̇)), before them (a parameter) or
+        // among them (`cos(q1)` among sines and cosines); a constant term becomes a multiple.
+        let cases: [&[(&str, &str)]; 3] = [
+            &[
+                ("m2*lc2^2*sin(q2)*cos(q2) - 3/2*l1*cos(q2)^2 + 5", "qd1"),
+                ("-m2*l1*lc2*sin(q2)", "qd2"),
+                ("0", "qd3"),
+            ],
+            &[
+                ("sin(q1)^2 - 1/2*g*cos(q2)", "a"),
+                ("b*sin(q2) + 7/3", "l1"),
+            ],
+            &[("sin(q1)*sin(q2) - sin(q3)^3 + 2*I1", "cos(q1)")],
+        ];
+        for parts in cases {
+            let parts: Vec<(Poly, Poly)> = parts.iter().map(|(c, x)| (p(c), p(x))).collect();
+            let expanded = Poly::sum(&parts.iter().map(|(c, x)| c.mul(x)).collect::<Vec<_>>());
+            let atoms: Vec<(&Poly, AtomId)> = parts
+                .iter()
+                .map(|(c, x)| (c, x.terms()[0].0.factors()[0].0))
+                .collect();
+            let ranks = Ranks::of([&expanded]).expect("plain atoms");
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                for nested in [false, true] {
+                    let mut r = Renderer::new(&ranks, style);
+                    assert_eq!(
+                        r.sum_of_multiples(&atoms, nested),
+                        Some(Renderer::new(&ranks, style).sum(&expanded, nested)),
+                        "{parts:?} in {style:?}"
+                    );
+                }
+            }
+        }
+        // A part that holds its multiplier would merge with it: not printed this way.
+        let (c, x) = (p("qd1*sin(q1) + 1"), p("qd1"));
+        let ranks = Ranks::of([&c.mul(&x)]).expect("plain atoms");
+        let x = x.terms()[0].0.factors()[0].0;
+        assert_eq!(
+            Renderer::new(&ranks, Style::Text).sum_of_multiples(&[(&c, x)], false),
+            None
+        );
     }
 }

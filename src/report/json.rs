@@ -15,10 +15,11 @@
 
 use super::pretty::{doc_to_pretty, write_pretty, Doc};
 use super::{lhs_string, quantity_string, tau, Method, JSON_TIDY_BUDGET};
-use crate::algebra::Poly;
-use crate::dynamics::lagrange::nonzero_christoffel;
+use crate::algebra::atom::{self, AtomId};
+use crate::algebra::{Poly, Symbol};
+use crate::dynamics::lagrange::{nonzero_christoffel, Christoffel};
 use crate::dynamics::Derivation;
-use crate::print::parallel::{self, Stage};
+use crate::parallel::{self, WORTH_SHARING};
 use crate::print::poly::{poly_to_string, Ranks, Renderer};
 use crate::print::Style;
 use serde_json::Value;
@@ -32,26 +33,61 @@ enum Job<'a> {
     Large(&'a Poly),
     /// A smaller quantity, tidied ([`quantity_string`]).
     Small(&'a Poly),
+    /// An entry of `C(q, q̇)`, `c_kj = Σ_i c_ijk q̇_i`, printed from the Christoffel symbols (the
+    /// non-zero ones, each with its `q̇_i`) as a quantity of that many terms: no `c_ijk` holds a
+    /// `q̇`, so the sum has a term for each of theirs.
+    Rates(Vec<(&'a Poly, AtomId)>),
+}
+
+impl Job<'_> {
+    /// The number of terms of the quantity.
+    fn len(&self) -> usize {
+        match self {
+            Job::Lhs(p) | Job::Large(p) | Job::Small(p) => p.len(),
+            Job::Rates(parts) => parts.iter().map(|(p, _)| p.len()).sum(),
+        }
+    }
+}
+
+/// A quantity's job: [`Job::Large`] past [`JSON_TIDY_BUDGET`] terms, [`Job::Small`] below.
+fn quantity(p: &Poly) -> Job<'_> {
+    if p.len() > JSON_TIDY_BUDGET {
+        Job::Large(p)
+    } else {
+        Job::Small(p)
+    }
 }
 
 /// The jobs of quantities (not left sides) printed together, and the ranking of their large ones'
 /// atoms, which the renderer shares (the text does not depend on which atoms are ranked with them).
-fn quantities<'a>(polys: impl IntoIterator<Item = &'a Poly>) -> (Option<Ranks>, Vec<Job<'a>>) {
-    let jobs: Vec<Job> = polys
-        .into_iter()
-        .map(|p| {
-            if p.len() > JSON_TIDY_BUDGET {
-                Job::Large(p)
-            } else {
-                Job::Small(p)
-            }
-        })
-        .collect();
-    let ranks = Ranks::of(jobs.iter().filter_map(|j| match j {
-        Job::Large(p) => Some(*p),
-        _ => None,
-    }));
+fn quantities(jobs: Vec<Job<'_>>) -> (Option<Ranks>, Vec<Job<'_>>) {
+    let ranks = {
+        let large = jobs.iter().filter(|j| j.len() > JSON_TIDY_BUDGET);
+        let rates: Vec<[(AtomId, i32); 1]> = large
+            .clone()
+            .flat_map(|j| match j {
+                Job::Rates(parts) => parts.iter().map(|&(_, x)| [(x, 1)]).collect(),
+                _ => Vec::new(),
+            })
+            .collect();
+        let polys = large.flat_map(|j| match j {
+            Job::Large(p) => vec![*p],
+            Job::Rates(parts) => parts.iter().map(|(p, _)| *p).collect(),
+            _ => Vec::new(),
+        });
+        Ranks::of_lists(
+            polys
+                .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
+                .chain(rates.iter().map(|x| &x[..])),
+        )
+    };
     (ranks, jobs)
+}
+
+/// `Σ_i p_i x_i` expanded.
+fn expanded(parts: &[(&Poly, AtomId)]) -> Poly {
+    let terms: Vec<Poly> = parts.iter().map(|&(p, x)| p.mul(&Poly::atom(x))).collect();
+    Poly::sum(&terms)
 }
 
 /// A job printed in ASCII.
@@ -63,6 +99,11 @@ fn print(ranks: &Option<Ranks>, job: &Job) -> String {
             None => poly_to_string(p, Style::Ascii),
         },
         Job::Small(p) => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
+        Job::Rates(parts) if job.len() > JSON_TIDY_BUDGET => ranks
+            .as_ref()
+            .and_then(|r| Renderer::new(r, Style::Ascii).sum_of_multiples(parts, false))
+            .unwrap_or_else(|| poly_to_string(&expanded(parts), Style::Ascii)),
+        Job::Rates(parts) => quantity_string(&expanded(parts), Style::Ascii, JSON_TIDY_BUDGET),
     }
 }
 
@@ -70,9 +111,9 @@ fn print(ranks: &Option<Ranks>, job: &Job) -> String {
 fn weight(job: &Job) -> usize {
     match job {
         Job::Lhs(p) => super::side_work(p),
-        Job::Large(p) => 64 * p.len(),
+        Job::Large(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => 64 * job.len(),
         // Tidying costs far more per term than printing.
-        Job::Small(p) => 20 * p.len() * p.len(),
+        _ => 20 * job.len() * job.len(),
     }
 }
 
@@ -95,78 +136,89 @@ fn upper(n: usize) -> Vec<(usize, usize)> {
     (0..n).flat_map(|k| (k..n).map(move |j| (k, j))).collect()
 }
 
-/// Every expression of the document, printed stage by stage as the derivation produces them
-/// ([`parallel::pipeline`]): `D` while the Christoffel symbols are derived, those while `τ` is, `τ`
-/// while `C` is; the text is the same on any number of threads.
-fn print_all(der: &Derivation, method: Method) -> Printed {
-    // The left sides by Euler–Lagrange come with P and g; by Newton–Euler, after C.
-    let lhs_stage = || (None, tau(der, method).iter().map(Job::Lhs).collect());
-    let mut stages: Vec<Stage<'_, Option<Ranks>, Job>> = vec![
-        // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
-        Box::new(|| {
-            let d = &der.mass_matrix().d;
-            quantities(upper(d.len()).into_iter().map(|(k, j)| &d[k][j]))
-        }),
-        // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
-        Box::new(|| {
-            quantities(
-                nonzero_christoffel(der.christoffel())
-                    .into_iter()
-                    .filter(|(i, jj, _, _)| i <= jj)
-                    .map(|(_, _, _, c)| c),
+/// The entries of `C(q, q̇)`, row by row, as jobs on the Christoffel symbols ([`Job::Rates`]).
+fn coriolis_jobs(christoffel: &Christoffel) -> Vec<Job<'_>> {
+    let n = christoffel.len();
+    let rates: Vec<AtomId> = (1..=n as u32).map(|i| atom::sym(&Symbol::qd(i))).collect();
+    (0..n)
+        .flat_map(|k| (0..n).map(move |j| (k, j)))
+        .map(|(k, j)| {
+            Job::Rates(
+                (0..n)
+                    .map(|i| (&christoffel[i][j][k], rates[i]))
+                    .filter(|(c, _)| !c.is_zero())
+                    .collect(),
             )
-        }),
-        Box::new(|| {
-            let motion = der.motion();
-            quantities(motion.g.iter().chain(std::iter::once(&motion.p)))
-        }),
-    ];
-    let lagrange = method == Method::Lagrange;
-    if lagrange {
-        stages.push(Box::new(lhs_stage));
-    }
-    stages.push(Box::new(|| quantities(der.coriolis().iter().flatten())));
-    if !lagrange {
-        stages.push(Box::new(lhs_stage));
-    }
-    // What the document prints: C, and τ by the chosen method (K is not printed).
-    let work = || {
-        der.motion();
-        der.coriolis();
-        tau(der, method);
-    };
-    // Printing beside the derivation pays off once D has a thousand terms or so (the all-symbolic
-    // PUMA 560's, the Stanford arm's, the UR5's); the numeric PUMA 560 derives in less time than
-    // it takes to print D, and small robots print faster than a thread starts.
-    let worth = |d: &[Job]| {
-        d.iter()
-            .map(|j| match j {
-                Job::Lhs(p) | Job::Large(p) | Job::Small(p) => p.len(),
-            })
-            .sum::<usize>()
-            >= PIPELINE_TERMS
-    };
-    let mut printed = parallel::pipeline(work, &stages, worth, weight, print).into_iter();
-    let mut next = || printed.next().expect("one list per stage");
-    let (d_upper, symbols, potential) = (next(), next(), next());
-    let (lhs, coriolis) = if lagrange {
-        let lhs = next();
-        (lhs, next())
-    } else {
-        let coriolis = next();
-        (next(), coriolis)
-    };
-    Printed {
-        d_upper,
-        symbols,
-        potential,
-        lhs,
-        coriolis,
-    }
+        })
+        .collect()
 }
 
-/// The terms of `D` (upper triangle) from which a document is printed beside its derivation.
-const PIPELINE_TERMS: usize = 1000;
+/// Every expression of the document: derived first (each stage of the derivation on several threads
+/// for a large robot), then printed on several threads ([`parallel::map`], heaviest first). `C` is
+/// printed from the Christoffel symbols and never expanded. The text is the same on any number of
+/// threads.
+///
+/// Printing the stages beside the derivation (a helper thread printing `D` while the Christoffel
+/// symbols are derived, and so on) was measured slower on two cores: the derivation then runs on one
+/// core while the helper waits for its next stage.
+fn print_all(der: &Derivation, method: Method) -> Printed {
+    // The document prints D, the Christoffel symbols, C (from them), g, P and τ by the chosen
+    // method (K is not printed).
+    let d = &der.mass_matrix().d;
+    let motion = der.motion();
+    let stages: [(Option<Ranks>, Vec<Job>); 5] = [
+        // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
+        quantities(
+            upper(d.len())
+                .into_iter()
+                .map(|(k, j)| quantity(&d[k][j]))
+                .collect(),
+        ),
+        // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
+        quantities(
+            nonzero_christoffel(der.christoffel())
+                .into_iter()
+                .filter(|(i, jj, _, _)| i <= jj)
+                .map(|(_, _, _, c)| quantity(c))
+                .collect(),
+        ),
+        quantities(coriolis_jobs(der.christoffel())),
+        quantities(
+            motion
+                .g
+                .iter()
+                .chain(std::iter::once(&motion.p))
+                .map(quantity)
+                .collect(),
+        ),
+        (None, tau(der, method).iter().map(Job::Lhs).collect()),
+    ];
+    let flat: Vec<(usize, &Job)> = stages
+        .iter()
+        .enumerate()
+        .flat_map(|(s, (_, jobs))| jobs.iter().map(move |j| (s, j)))
+        .collect();
+    let mut printed = parallel::map(
+        &flat,
+        |(_, j)| weight(j),
+        WORTH_SHARING,
+        |&(s, j)| print(&stages[s].0, j),
+    )
+    .into_iter();
+    let mut next = |s: usize| {
+        printed
+            .by_ref()
+            .take(stages[s].1.len())
+            .collect::<Vec<String>>()
+    };
+    Printed {
+        d_upper: next(0),
+        symbols: next(1),
+        coriolis: next(2),
+        potential: next(3),
+        lhs: next(4),
+    }
+}
 
 /// What a document says besides its expressions, owned here for [`document`] to borrow.
 struct Meta {
