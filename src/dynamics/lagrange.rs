@@ -279,7 +279,7 @@ pub fn christoffel_symbols(mass: &MassMatrix) -> Christoffel {
                 .collect()
         })
         .collect();
-    christoffel_from(&dd, |_, _, _, c| c)
+    christoffel_expanded(&dd)
 }
 
 /// The work of a stage per term it reads, in the units of [`parallel::map`] (about 3 ns; measured
@@ -304,27 +304,8 @@ pub fn christoffel_from(
     mut keep: impl FnMut(usize, usize, usize, Poly) -> Poly,
 ) -> Christoffel {
     let n = dd.len();
-    let at = |i: usize, a: usize, b: usize| -> &Poly {
-        let (a, b) = if a <= b { (a, b) } else { (b, a) };
-        &dd[i][a][b - a]
-    };
-    let half = Rational::new(1, 2).expect("non-zero");
-    // The symbols with i ≤ j, one (i, j) per item (on several threads when there is enough to add),
-    // then given to `keep` in order.
-    let pairs: Vec<(usize, usize)> = (0..n).flat_map(|i| (i..n).map(move |j| (i, j))).collect();
-    let weight = |&(i, j): &(usize, usize)| {
-        SUM_WORK
-            * (0..n)
-                .map(|k| at(i, k, j).len() + at(j, k, i).len() + at(k, i, j).len())
-                .sum::<usize>()
-    };
-    let symbols = parallel::map(&pairs, weight, WORTH_SHARING, |&(i, j)| {
-        (0..n)
-            .map(|k| at(i, k, j).add(at(j, k, i)).sub(at(k, i, j)).scale(&half))
-            .collect::<Vec<Poly>>()
-    });
     let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
-    for (&(i, j), row) in pairs.iter().zip(symbols) {
+    for ((i, j), row, _) in symbol_rows(dd, false) {
         for (k, c) in row.into_iter().enumerate() {
             let c = keep(i, j, k, c);
             christoffel[j][i][k] = c.clone();
@@ -332,6 +313,51 @@ pub fn christoffel_from(
         }
     }
     christoffel
+}
+
+/// The expanded Christoffel symbols from `dd` as in [`christoffel_from`], each `c_jik` a copy of
+/// `c_ijk` made on the thread that derived it (copying them one after another took a millisecond
+/// of the Franka Panda's derivation).
+fn christoffel_expanded(dd: &[Vec<Vec<Poly>>]) -> Christoffel {
+    let n = dd.len();
+    let mut christoffel = vec![vec![vec![Poly::zero(); n]; n]; n];
+    for ((i, j), row, twin) in symbol_rows(dd, true) {
+        christoffel[i][j] = row;
+        if let Some(twin) = twin {
+            christoffel[j][i] = twin;
+        }
+    }
+    christoffel
+}
+
+/// The rows `(c_ij1 … c_ijn)` for `i ≤ j` from `dd` (see [`christoffel_from`]), one `(i, j)` per
+/// item on several threads when there is enough to add, in order; with `twins`, a copy of each row
+/// with `i < j`, for `c_ji·`.
+#[allow(clippy::type_complexity)]
+fn symbol_rows(
+    dd: &[Vec<Vec<Poly>>],
+    twins: bool,
+) -> Vec<((usize, usize), Vec<Poly>, Option<Vec<Poly>>)> {
+    let n = dd.len();
+    let at = |i: usize, a: usize, b: usize| -> &Poly {
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        &dd[i][a][b - a]
+    };
+    let half = Rational::new(1, 2).expect("non-zero");
+    let pairs: Vec<(usize, usize)> = (0..n).flat_map(|i| (i..n).map(move |j| (i, j))).collect();
+    let weight = |&(i, j): &(usize, usize)| {
+        SUM_WORK
+            * (0..n)
+                .map(|k| at(i, k, j).len() + at(j, k, i).len() + at(k, i, j).len())
+                .sum::<usize>()
+    };
+    parallel::map(&pairs, weight, WORTH_SHARING, |&(i, j)| {
+        let row: Vec<Poly> = (0..n)
+            .map(|k| at(i, k, j).add(at(j, k, i)).sub(at(k, i, j)).scale(&half))
+            .collect();
+        let twin = (twins && i != j).then(|| row.clone());
+        ((i, j), row, twin)
+    })
 }
 
 /// `C(q, q̇)`: `c_kj = Σ_i c_ijk q̇_i` (expanded, or over the names of a compact arena).

@@ -58,30 +58,28 @@ fn quantity(p: &Poly) -> Job<'_> {
     }
 }
 
-/// The jobs of quantities (not left sides) printed together, and the ranking of their large ones'
-/// atoms, which the renderer shares (the text does not depend on which atoms are ranked with them).
-fn quantities(jobs: Vec<Job<'_>>) -> (Option<Ranks>, Vec<Job<'_>>) {
-    let ranks = {
-        let large = jobs.iter().filter(|j| j.len() > JSON_TIDY_BUDGET);
-        let rates: Vec<[(AtomId, i32); 1]> = large
-            .clone()
-            .flat_map(|j| match j {
-                Job::Rates(parts) => parts.iter().map(|&(_, x)| [(x, 1)]).collect(),
-                _ => Vec::new(),
-            })
-            .collect();
-        let polys = large.flat_map(|j| match j {
-            Job::Large(p) => vec![*p],
-            Job::Rates(parts) => parts.iter().map(|(p, _)| *p).collect(),
+/// The ranking of the atoms of the large quantities among `jobs` (a [`Job::Rates`]'s parts and
+/// multipliers), which their renderer shares: the text does not depend on which atoms are ranked
+/// with them.
+fn ranks(jobs: &[Job]) -> Option<Ranks> {
+    let large = jobs.iter().filter(|j| j.len() > JSON_TIDY_BUDGET);
+    let rates: Vec<[(AtomId, i32); 1]> = large
+        .clone()
+        .flat_map(|j| match j {
+            Job::Rates(parts) => parts.iter().map(|&(_, x)| [(x, 1)]).collect(),
             _ => Vec::new(),
-        });
-        Ranks::of_lists(
-            polys
-                .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
-                .chain(rates.iter().map(|x| &x[..])),
-        )
-    };
-    (ranks, jobs)
+        })
+        .collect();
+    let polys = large.flat_map(|j| match j {
+        Job::Large(p) => vec![*p],
+        Job::Rates(parts) => parts.iter().map(|(p, _)| *p).collect(),
+        _ => Vec::new(),
+    });
+    Ranks::of_lists(
+        polys
+            .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
+            .chain(rates.iter().map(|x| &x[..])),
+    )
 }
 
 /// `Σ_i p_i x_i` expanded.
@@ -136,10 +134,15 @@ fn upper(n: usize) -> Vec<(usize, usize)> {
     (0..n).flat_map(|k| (k..n).map(move |j| (k, j))).collect()
 }
 
-/// The entries of `C(q, q̇)`, row by row, as jobs on the Christoffel symbols ([`Job::Rates`]).
-fn coriolis_jobs(christoffel: &Christoffel) -> Vec<Job<'_>> {
+/// `q̇_1 … q̇_n`.
+fn rate_atoms(n: usize) -> Vec<AtomId> {
+    (1..=n as u32).map(|i| atom::sym(&Symbol::qd(i))).collect()
+}
+
+/// The entries of `C(q, q̇)`, row by row, as jobs on the Christoffel symbols ([`Job::Rates`]);
+/// `rates` are [`rate_atoms`].
+fn coriolis_jobs<'a>(christoffel: &'a Christoffel, rates: &[AtomId]) -> Vec<Job<'a>> {
     let n = christoffel.len();
-    let rates: Vec<AtomId> = (1..=n as u32).map(|i| atom::sym(&Symbol::qd(i))).collect();
     (0..n)
         .flat_map(|k| (0..n).map(move |j| (k, j)))
         .map(|(k, j)| {
@@ -165,33 +168,41 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
     // The document prints D, the Christoffel symbols, C (from them), g, P and τ by the chosen
     // method (K is not printed).
     let d = &der.mass_matrix().d;
+    let christoffel = der.christoffel();
     let motion = der.motion();
-    let stages: [(Option<Ranks>, Vec<Job>); 5] = [
-        // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
-        quantities(
-            upper(d.len())
-                .into_iter()
-                .map(|(k, j)| quantity(&d[k][j]))
-                .collect(),
-        ),
-        // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
-        quantities(
-            nonzero_christoffel(der.christoffel())
-                .into_iter()
-                .filter(|(i, jj, _, _)| i <= jj)
-                .map(|(_, _, _, c)| quantity(c))
-                .collect(),
-        ),
-        quantities(coriolis_jobs(der.christoffel())),
-        quantities(
-            motion
-                .g
-                .iter()
-                .chain(std::iter::once(&motion.p))
-                .map(quantity)
-                .collect(),
-        ),
-        (None, tau(der, method).iter().map(Job::Lhs).collect()),
+    // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
+    let d_jobs: Vec<Job> = upper(d.len())
+        .into_iter()
+        .map(|(k, j)| quantity(&d[k][j]))
+        .collect();
+    // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
+    let symbols: Vec<&Poly> = nonzero_christoffel(christoffel)
+        .into_iter()
+        .filter(|(i, jj, _, _)| i <= jj)
+        .map(|(_, _, _, c)| c)
+        .collect();
+    let rates = rate_atoms(d.len());
+    // The symbols and C share one ranking: the symbols with i ≤ j hold every atom of C but its q̇.
+    let singles: Vec<[(AtomId, i32); 1]> = rates.iter().map(|&x| [(x, 1)]).collect();
+    let shared = Ranks::of_lists(
+        symbols
+            .iter()
+            .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
+            .chain(singles.iter().map(|x| &x[..])),
+    );
+    let g_jobs: Vec<Job> = motion
+        .g
+        .iter()
+        .chain(std::iter::once(&motion.p))
+        .map(quantity)
+        .collect();
+    let (d_ranks, g_ranks) = (ranks(&d_jobs), ranks(&g_jobs));
+    let stages: [(&Option<Ranks>, Vec<Job>); 5] = [
+        (&d_ranks, d_jobs),
+        (&shared, symbols.into_iter().map(quantity).collect()),
+        (&shared, coriolis_jobs(christoffel, &rates)),
+        (&g_ranks, g_jobs),
+        (&None, tau(der, method).iter().map(Job::Lhs).collect()),
     ];
     let flat: Vec<(usize, &Job)> = stages
         .iter()
@@ -202,7 +213,7 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         &flat,
         |(_, j)| weight(j),
         WORTH_SHARING,
-        |&(s, j)| print(&stages[s].0, j),
+        |&(s, j)| print(stages[s].0, j),
     )
     .into_iter();
     let mut next = |s: usize| {
