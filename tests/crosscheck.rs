@@ -187,7 +187,11 @@ fn staged_euler_lagrange_is_the_one_shot_derivation() {
         let robot = example_robot(example);
         let once = Lagrange::derive(&robot, &Kinematics::new(&robot));
         let der = Derivation::new(robot).expect("valid");
-        assert_eq!(*der.motion().tau, *once.tau, "{example}: τ asked for first");
+        assert_eq!(
+            der.left_sides(),
+            &once.tau[..],
+            "{example}: τ asked for first"
+        );
         assert_eq!(der.coriolis(), &once.c[..], "{example}: C");
         let el = der.lagrange();
         assert_eq!(*el.d, *once.d, "{example}: D");
@@ -200,7 +204,7 @@ fn staged_euler_lagrange_is_the_one_shot_derivation() {
         );
         assert_eq!(el.facts, once.facts, "{example}");
         // The stages are shared with the assembled quantities, not copied.
-        assert!(std::ptr::eq(&*el.tau, &*der.motion().tau), "{example}");
+        assert!(std::ptr::eq(&el.tau[..], der.left_sides()), "{example}");
     }
 }
 
@@ -272,4 +276,47 @@ fn local_jacobians_are_the_world_jacobians_seen_from_the_link() {
         }
         assert!(nonzero > 0, "{name}: some column moves");
     }
+}
+
+/// The JSON document prints each Euler–Lagrange left side `τ_k` from its parts (`d_kj q̈_j`,
+/// `2 c_ijk q̇_i q̇_j`, `g_k`) without multiplying them out: their sum is the derived `τ_k`, and the
+/// side printed from them is the side printed from `τ_k`, in every style, for sides small (tidied)
+/// and large (printed from the normal form), with and without symbolic parameters.
+#[test]
+fn left_sides_print_the_same_from_their_parts() {
+    use symdyn::dynamics::lagrange::{multiplied_out, side_parts};
+    use symdyn::print::Style;
+    use symdyn::report::{lhs_string, lhs_string_of_parts, DISPLAY_BUDGET};
+    let mut large = 0;
+    for example in [
+        "elbow_geared.scene",
+        "scara.scene",
+        "stanford.scene",
+        "puma560.scene",
+    ] {
+        let robot = example_robot(example);
+        let n = robot.dof();
+        let friction: Vec<Option<symdyn::algebra::Poly>> = (1..=n)
+            .map(|k| {
+                let drive = robot.drive(k);
+                (!drive.is_none()).then(|| drive.friction(k as u32))
+            })
+            .collect();
+        let der = Derivation::new(robot).expect("valid");
+        let (d, c, g) = (&der.mass_matrix().d, der.christoffel(), &der.motion().g);
+        for (k, tau) in der.left_sides().iter().enumerate() {
+            let parts = side_parts(k, d, c, g, friction[k].as_ref());
+            assert_eq!(&multiplied_out(&parts), tau, "{example}: τ{}", k + 1);
+            large += usize::from(tau.len() > DISPLAY_BUDGET);
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                assert_eq!(
+                    lhs_string_of_parts(&parts, style),
+                    lhs_string(tau, style),
+                    "{example}: τ{} in {style:?}",
+                    k + 1
+                );
+            }
+        }
+    }
+    assert!(large > 0, "some side is printed from the normal form");
 }

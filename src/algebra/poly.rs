@@ -1170,8 +1170,8 @@ mod tests {
             let der = crate::dynamics::Derivation::new(scene.robot).unwrap();
             polys.extend(der.mass_matrix().d.iter().flatten().cloned());
             polys.extend(der.christoffel().iter().flatten().flatten().cloned());
+            polys.extend(der.left_sides().iter().cloned());
             let motion = der.motion();
-            polys.extend(motion.tau.iter().cloned());
             polys.extend(motion.g.iter().cloned());
             polys.push(motion.p.clone());
         }

@@ -5,7 +5,7 @@ use super::compact::CompactDynamics;
 use super::facts::{Fact, Warning};
 use super::kinematics::{joint_frame, JointFrame, Kinematics};
 use super::lagrange::{
-    christoffel_symbols, coriolis_matrix, Christoffel, Lagrange, MassMatrix, Motion,
+    christoffel_symbols, coriolis_matrix, left_sides, Christoffel, Lagrange, MassMatrix, Motion,
 };
 use super::model::{JointKind, ModelError, Robot};
 use super::ne_symbolic::{self, Frame};
@@ -51,6 +51,7 @@ pub struct Derivation {
     mass: OnceLock<MassMatrix>,
     christoffel: OnceLock<Arc<Christoffel>>,
     motion: OnceLock<Motion>,
+    left_sides: OnceLock<Arc<Vec<Poly>>>,
     coriolis: OnceLock<Arc<Vec<Vec<Poly>>>>,
     lagrange: OnceLock<Lagrange>,
     ne_body: OnceLock<NewtonEuler<Poly>>,
@@ -88,6 +89,7 @@ impl Derivation {
             mass: OnceLock::new(),
             christoffel: OnceLock::new(),
             motion: OnceLock::new(),
+            left_sides: OnceLock::new(),
             coriolis: OnceLock::new(),
             lagrange: OnceLock::new(),
             ne_body: OnceLock::new(),
@@ -124,6 +126,7 @@ impl Derivation {
                 self.mass_matrix(),
                 self.christoffel_cell(),
                 self.motion(),
+                self.left_sides_cell(),
                 self.coriolis_cell(),
             )
         })
@@ -157,15 +160,27 @@ impl Derivation {
             .get_or_init(|| Arc::new(coriolis_matrix(self.christoffel())))
     }
 
-    /// The third Euler–Lagrange stage: `P`, `g(q)` and the left sides `τ`.
+    /// The third Euler–Lagrange stage: `P` and `g(q)`.
     pub fn motion(&self) -> &Motion {
-        self.motion.get_or_init(|| {
-            Motion::derive(
+        self.motion
+            .get_or_init(|| Motion::derive(&self.robot, self.kinematics()))
+    }
+
+    /// The left sides `τ_k` by Euler–Lagrange (`D q̈ + C q̇ + g`, expanded), the last stage: a
+    /// document that prints them from their parts ([`crate::dynamics::lagrange::side_parts`])
+    /// never asks for them.
+    pub fn left_sides(&self) -> &[Poly] {
+        self.left_sides_cell()
+    }
+
+    fn left_sides_cell(&self) -> &Arc<Vec<Poly>> {
+        self.left_sides.get_or_init(|| {
+            Arc::new(left_sides(
                 &self.robot,
-                self.kinematics(),
                 self.mass_matrix(),
                 self.christoffel(),
-            )
+                &self.motion().g,
+            ))
         })
     }
 

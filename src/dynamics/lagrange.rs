@@ -18,8 +18,9 @@ use super::facts::Fact;
 use super::kinematics::{Columns, Kinematics};
 use super::model::Robot;
 use super::vec3::{Mat3, Vec3};
-use crate::algebra::atom::{self, Class};
+use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::calculus::poly_diff;
+use crate::algebra::poly::Mono;
 use crate::algebra::{to_poly, Poly, Rational, Symbol};
 use crate::parallel::{self, WORTH_SHARING};
 use std::sync::Arc;
@@ -61,15 +62,14 @@ pub struct MassMatrix {
     pub constant: bool,
 }
 
-/// The third stage: the potential, gravity and the left sides of the equations.
+/// The third stage: the potential and gravity (the left sides of the equations, [`left_sides`], are a
+/// stage of their own).
 #[derive(Clone, Debug)]
 pub struct Motion {
     /// The potential energy `P`.
     pub p: Poly,
     /// `g(q) = ∂P/∂q`.
     pub g: Vec<Poly>,
-    /// The left side of equation `k`: `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k` (+ friction).
-    pub tau: Arc<Vec<Poly>>,
 }
 
 fn is_constant(p: &Poly) -> bool {
@@ -384,23 +384,10 @@ pub fn coriolis_matrix(christoffel: &[Vec<Vec<Poly>>]) -> Vec<Vec<Poly>> {
 }
 
 impl Motion {
-    /// `P = −Σ_i m_i gᵀ p_ci` (+ payload), `g_k = ∂P/∂q_k`, and the left sides
-    /// `Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k` (+ the drive's friction).
-    pub fn derive(
-        robot: &Robot,
-        kin: &Kinematics,
-        mass: &MassMatrix,
-        christoffel: &Christoffel,
-    ) -> Motion {
+    /// `P = −Σ_i m_i gᵀ p_ci` (+ payload) and `g_k = ∂P/∂q_k`.
+    pub fn derive(robot: &Robot, kin: &Kinematics) -> Motion {
         let n = robot.dof();
-        let d = &mass.d;
         let qs: Vec<Symbol> = (1..=n as u32).map(Symbol::q).collect();
-        let qds: Vec<Poly> = (1..=n as u32)
-            .map(|i| Poly::symbol(&Symbol::qd(i)))
-            .collect();
-        let qdds: Vec<Poly> = (1..=n as u32)
-            .map(|i| Poly::symbol(&Symbol::qdd(i)))
-            .collect();
         let gravity: Vec3<Poly> = Vec3(std::array::from_fn(|k| to_poly(&robot.gravity[k])));
         let mut p_parts: Vec<Poly> = (0..n)
             .map(|i| {
@@ -414,51 +401,109 @@ impl Motion {
         }
         let p = Poly::sum(&p_parts);
         let g: Vec<Poly> = qs.iter().map(|q| poly_diff(&p, q)).collect();
-        // Σ_j c_kj q̇_j = Σ_ij c_ijk q̇_i q̇_j = Σ_i c_iik q̇_i² + Σ_{i<j} 2 c_ijk q̇_i q̇_j (c_ijk = c_jik):
-        // one product per unordered pair, and no two products share a monomial (no c_ijk contains a
-        // q̇), so the sum only merges.
-        let two = Rational::int(2);
-        let rate_pairs: Vec<(usize, usize, Poly)> = (0..n)
-            .flat_map(|i| (i..n).map(move |j| (i, j)))
-            .map(|(i, j)| {
-                let r = qds[i].mul(&qds[j]);
-                (i, j, if i == j { r } else { r.scale(&two) })
-            })
-            .collect();
-        // One τ_k per item, on several threads for a large robot (the drive's friction is built
-        // here first: its atoms are interned on this thread).
-        let friction: Vec<Option<Poly>> = (0..n)
-            .map(|k| {
-                let drive = robot.drive(k + 1);
-                (!drive.is_none()).then(|| drive.friction(k as u32 + 1))
-            })
-            .collect();
-        let rows: Vec<usize> = (0..n).collect();
-        let weight = |&k: &usize| {
-            SUM_WORK
-                * (terms(&d[k])
-                    + rate_pairs
-                        .iter()
-                        .map(|(i, j, _)| christoffel[*i][*j][k].len())
-                        .sum::<usize>())
-        };
-        let tau = parallel::map(&rows, weight, WORTH_SHARING, |&k| {
-            let mut parts: Vec<Poly> = (0..n).map(|j| d[k][j].mul(&qdds[j])).collect();
-            parts.extend(
-                rate_pairs
-                    .iter()
-                    .map(|(i, j, r)| christoffel[*i][*j][k].mul(r)),
-            );
-            parts.push(g[k].clone());
-            parts.extend(friction[k].clone());
-            Poly::sum(&parts)
-        });
-        Motion {
-            p,
-            g,
-            tau: Arc::new(tau),
+        Motion { p, g }
+    }
+}
+
+/// What `τ_k` sums, each part a coefficient and the rates or accelerations it multiplies:
+/// `d_kj · q̈_j`, `(2 − δ_ij) c_ijk · q̇_i q̇_j` for `i ≤ j` (`c_ijk = c_jik`), `g_k`, and the drive's
+/// friction. Only the coefficients of `i < j` are new (doubled); the rest are borrowed.
+pub type SideParts<'a> = Vec<(std::borrow::Cow<'a, Poly>, Vec<(AtomId, i32)>)>;
+
+/// The parts of `τ_k` ([`SideParts`]), the zero ones left out. Their products sum to `τ_k`; none
+/// of `D`, the Christoffel symbols or `g` holds a `q̇` or `q̈` (they are functions of `q`), so those
+/// products share no monomial and the sum only merges. The friction of a drive (`friction`, with
+/// `q̇_k` in it) comes last, with nothing to multiply.
+pub fn side_parts<'a>(
+    k: usize,
+    d: &'a [Vec<Poly>],
+    christoffel: &'a Christoffel,
+    g: &'a [Poly],
+    friction: Option<&'a Poly>,
+) -> SideParts<'a> {
+    use std::borrow::Cow;
+    let n = d.len();
+    let qd = |i: usize| atom::sym(&Symbol::qd(i as u32 + 1));
+    let two = Rational::int(2);
+    let mut parts: SideParts = (0..n)
+        .filter(|&j| !d[k][j].is_zero())
+        .map(|j| {
+            let qdd = atom::sym(&Symbol::qdd(j as u32 + 1));
+            (Cow::Borrowed(&d[k][j]), vec![(qdd, 1)])
+        })
+        .collect();
+    for i in 0..n {
+        for j in i..n {
+            let c = &christoffel[i][j][k];
+            if c.is_zero() {
+                continue;
+            }
+            parts.push(if i == j {
+                (Cow::Borrowed(c), vec![(qd(i), 2)])
+            } else {
+                (Cow::Owned(c.scale(&two)), vec![(qd(i), 1), (qd(j), 1)])
+            });
         }
     }
+    parts.extend(
+        std::iter::once(&g[k])
+            .chain(friction)
+            .filter(|p| !p.is_zero())
+            .map(|p| (Cow::Borrowed(p), Vec::new())),
+    );
+    parts
+}
+
+/// The product of some atoms' powers (distinct atoms), as a polynomial.
+fn monomial(mut factors: Vec<(AtomId, i32)>) -> Poly {
+    factors.sort_unstable();
+    Poly::term(Mono::from_sorted(factors), Rational::one())
+}
+
+/// The left sides `τ_k = Σ_j d_kj q̈_j + Σ_ij c_ijk q̇_i q̇_j + g_k` (+ the drive's friction), one
+/// row per item on several threads for a large robot: the sum of each row's [`side_parts`]
+/// multiplied out.
+pub fn left_sides(
+    robot: &Robot,
+    mass: &MassMatrix,
+    christoffel: &Christoffel,
+    g: &[Poly],
+) -> Vec<Poly> {
+    let n = robot.dof();
+    let d = &mass.d;
+    // The drive's friction is built here first: its atoms are interned on this thread.
+    let friction: Vec<Option<Poly>> = (0..n)
+        .map(|k| {
+            let drive = robot.drive(k + 1);
+            (!drive.is_none()).then(|| drive.friction(k as u32 + 1))
+        })
+        .collect();
+    // The rate and acceleration atoms, likewise.
+    for i in 1..=n as u32 {
+        atom::sym(&Symbol::qd(i));
+        atom::sym(&Symbol::qdd(i));
+    }
+    let rows: Vec<usize> = (0..n).collect();
+    let weight = |&k: &usize| {
+        SUM_WORK
+            * (terms(&d[k])
+                + (0..n)
+                    .flat_map(|i| (i..n).map(move |j| (i, j)))
+                    .map(|(i, j)| christoffel[i][j][k].len())
+                    .sum::<usize>())
+    };
+    parallel::map(&rows, weight, WORTH_SHARING, |&k| {
+        multiplied_out(&side_parts(k, d, christoffel, g, friction[k].as_ref()))
+    })
+}
+
+/// The sum of some [`SideParts`]' products, `τ_k` for the parts of `τ_k`.
+pub fn multiplied_out(parts: &SideParts) -> Poly {
+    let products: Vec<Poly> = parts
+        .iter()
+        .map(|(c, by)| c.mul(&monomial(by.clone())))
+        .collect();
+    Poly::sum(&products)
 }
 
 impl Lagrange {
@@ -466,9 +511,10 @@ impl Lagrange {
     pub fn derive(robot: &Robot, kin: &Kinematics) -> Lagrange {
         let mass = MassMatrix::derive(robot, kin);
         let christoffel = Arc::new(christoffel_symbols(&mass));
-        let motion = Motion::derive(robot, kin, &mass, &christoffel);
+        let motion = Motion::derive(robot, kin);
+        let tau = Arc::new(left_sides(robot, &mass, &christoffel, &motion.g));
         let coriolis = Arc::new(coriolis_matrix(&christoffel));
-        Lagrange::assemble(&mass, &christoffel, &motion, &coriolis)
+        Lagrange::assemble(&mass, &christoffel, &motion, &tau, &coriolis)
     }
 
     /// The quantities from the stages, with `K = ½ q̇ᵀ D q̇` computed here; the stages are shared,
@@ -477,6 +523,7 @@ impl Lagrange {
         mass: &MassMatrix,
         christoffel: &Arc<Christoffel>,
         motion: &Motion,
+        tau: &Arc<Vec<Poly>>,
         coriolis: &Arc<Vec<Vec<Poly>>>,
     ) -> Lagrange {
         let d = &mass.d;
@@ -514,7 +561,7 @@ impl Lagrange {
             p: motion.p.clone(),
             g: motion.g.clone(),
             k,
-            tau: Arc::clone(&motion.tau),
+            tau: Arc::clone(tau),
             facts,
         }
     }

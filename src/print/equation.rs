@@ -203,13 +203,29 @@ pub fn pieces(p: &Poly, style: Style) -> Option<Vec<Shown>> {
 /// [`join`] of [`pieces`], written straight into one string (no display term is built), or `None`
 /// as for [`pieces`].
 pub fn side_text(p: &Poly, style: Style) -> Option<String> {
-    let ranks = Ranks::of([p])?;
+    side_text_of_parts(&[(p, &[])], style)
+}
+
+/// [`side_text`] of the side `Σ_i p_i · m_i`, from its parts `(p_i, m_i)` (each `m_i` a product of
+/// accelerations `q̈` or rates `q̇`, distinct from the others', or none), without multiplying it
+/// out: the parts of an equation of motion, `d_kj · q̈_j`, `2 c_ijk · q̇_i q̇_j`, `g_k`. When no
+/// `p_i` holds a `q̇` or `q̈`, no two products share a monomial, and the side has exactly their
+/// terms; `None` when one does (the caller then multiplies out), or as for [`pieces`].
+pub fn side_text_of_parts(parts: &[(&Poly, &[(AtomId, i32)])], style: Style) -> Option<String> {
+    let ranks = Ranks::of_lists(
+        parts
+            .iter()
+            .flat_map(|(p, by)| p.terms().iter().map(|(m, _)| m.factors()).chain([*by])),
+    )?;
+    let terms: usize = parts.iter().map(|(p, _)| p.len()).sum();
     let mut sink = Write {
-        out: String::with_capacity(48 * p.len()),
+        out: String::with_capacity(48 * terms),
         frames: vec![Frame::default()],
         style,
     };
-    lay_out(p, &ranks, style, &mut sink);
+    if !lay_out_parts(parts, &ranks, style, &mut sink) {
+        return None;
+    }
     if sink.frames[0].count == 0 {
         sink.out.push('0');
     }
@@ -222,17 +238,53 @@ pub fn side_text(p: &Poly, style: Style) -> Option<String> {
 /// rates (stage 1), else its trig factors (stage 2, possibly none). Terms of one key share a display
 /// term, keys in order within a stage ([`shown`] lays out each).
 pub(crate) fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sink) {
+    let whole = lay_out_parts(&[(p, &[])], ranks, style, sink);
+    debug_assert!(whole, "one part, times nothing");
+}
+
+/// [`lay_out`] of `Σ_i p_i · m_i` from its parts, as [`side_text_of_parts`] describes; `false`, with
+/// nothing given to `sink`, when the side cannot be laid out from them (a part of several, or
+/// multiplied by something, holds a `q̇` or `q̈`).
+pub(crate) fn lay_out_parts(
+    parts: &[(&Poly, &[(AtomId, i32)])],
+    ranks: &Ranks,
+    style: Style,
+    sink: &mut impl Sink,
+) -> bool {
     let roles: Vec<Role> = (0..ranks.len() as u32)
         .map(|r| role(ranks.atom(r)))
         .collect();
+    let whole = matches!(parts, [(_, [])]);
     let mut r = Renderer::new(ranks, style);
-    let mut buf: Vec<(u32, i32)> =
-        Vec::with_capacity(p.terms().iter().map(|(m, _)| m.factors().len()).sum());
-    let mut splits: Vec<Split> = Vec::with_capacity(p.len());
+    let mut buf: Vec<(u32, i32)> = Vec::with_capacity(
+        parts
+            .iter()
+            .map(|(p, by)| {
+                p.terms()
+                    .iter()
+                    .map(|(m, _)| m.factors().len())
+                    .sum::<usize>()
+                    + by.len() * p.len()
+            })
+            .sum(),
+    );
+    let mut splits: Vec<Split> = Vec::with_capacity(parts.iter().map(|(p, _)| p.len()).sum());
     let mut scratch: Factors = Vec::new();
-    for (m, c) in p.terms() {
+    for (m, c) in parts
+        .iter()
+        .flat_map(|&(p, by)| p.terms().iter().map(move |(m, c)| ((m, by), c)))
+    {
+        let (m, by) = m;
         scratch.clear();
         scratch.extend(m.factors().iter().map(|&(id, e)| (ranks.rank(id), e)));
+        if !whole
+            && scratch
+                .iter()
+                .any(|&(r, _)| matches!(roles[r as usize], Role::Acceleration | Role::Rate))
+        {
+            return false;
+        }
+        scratch.extend(by.iter().map(|&(id, e)| (ranks.rank(id), e)));
         scratch.sort_unstable_by_key(|&(r, _)| r);
         let has = |want: Role| scratch.iter().any(|&(r, _)| roles[r as usize] == want);
         let (stage, key) = if has(Role::Acceleration) {
@@ -286,6 +338,7 @@ pub(crate) fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sin
             .collect();
         shown(sink, &mut r, &roles, coeff, key);
     }
+    true
 }
 
 /// The number of trig factors of a key (with multiplicity).
@@ -604,5 +657,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A side from its parts is the side of their sum; a part that holds a rate or an acceleration
+    /// could share a monomial with another's product, so it is not laid out from parts.
+    #[test]
+    fn a_side_from_its_parts_is_the_side_of_their_sum() {
+        let parts = [
+            ("m2*l1*lc2*cos(q2) + m2*lc2^2 + I2", "qdd1"),
+            ("m2*lc2^2 + I2", "qdd2"),
+            ("-m2*l1*lc2*sin(q2)", "qd1*qd2"),
+            ("-1/2*m2*l1*lc2*sin(q2)", "qd2^2"),
+            ("g*m2*lc2*cos(q1 + q2) + g*(m1*lc1 + m2*l1)*cos(q1)", "1"),
+        ];
+        let polys: Vec<(Poly, Poly)> = parts.iter().map(|(c, m)| (p(c), p(m))).collect();
+        let sum = Poly::sum(&polys.iter().map(|(c, m)| c.mul(m)).collect::<Vec<_>>());
+        let by: Vec<Vec<(AtomId, i32)>> = polys
+            .iter()
+            .map(|(_, m)| m.terms()[0].0.factors().to_vec())
+            .collect();
+        let refs: Vec<(&Poly, &[(AtomId, i32)])> = polys
+            .iter()
+            .zip(&by)
+            .map(|((c, _), b)| (c, &b[..]))
+            .collect();
+        for style in [Style::Text, Style::Ascii, Style::Latex] {
+            assert_eq!(
+                side_text_of_parts(&refs, style),
+                side_text(&sum, style),
+                "{style:?}"
+            );
+            assert!(side_text_of_parts(&refs, style).is_some());
+        }
+        let (holds, qd2) = (p("qd1*sin(q2) + 1"), p("qd2"));
+        let qd2 = qd2.terms()[0].0.factors().to_vec();
+        assert_eq!(side_text_of_parts(&[(&holds, &qd2[..])], Style::Text), None);
     }
 }

@@ -12,9 +12,11 @@ pub use compact::{
 pub use json::{json, json_text, write_json};
 pub use pretty::{doc_to_pretty, to_pretty, write_pretty, Doc};
 
+use crate::algebra::atom::AtomId;
 use crate::algebra::tidy::equation_terms_poly;
 use crate::algebra::{Expr, Poly, Symbol};
 use crate::dynamics::check::Claim;
+use crate::dynamics::lagrange::{multiplied_out, SideParts};
 use crate::dynamics::{Derivation, Frame};
 use crate::print::layout::{Layout, PreparedEquation, Side};
 use crate::print::{self, Style};
@@ -32,7 +34,7 @@ pub enum Method {
 /// third stage is derived, before `C` and `K`).
 pub fn tau(der: &Derivation, method: Method) -> &[Poly] {
     match method {
-        Method::Lagrange => &der.motion().tau,
+        Method::Lagrange => der.left_sides(),
         Method::NewtonEuler(frame) => &der.newton_euler(frame).tau,
     }
 }
@@ -56,6 +58,19 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
         }
     }
     print::sum_to_string(&lhs_terms(tau_k), style)
+}
+
+/// [`lhs_string`] of `τ_k` from its parts ([`side_parts`](crate::dynamics::lagrange::side_parts)),
+/// never multiplied out when it is printed from the normal form: the same text.
+pub fn lhs_string_of_parts(parts: &SideParts, style: Style) -> String {
+    if parts.iter().map(|(p, _)| p.len()).sum::<usize>() > DISPLAY_BUDGET {
+        let refs: Vec<(&Poly, &[(AtomId, i32)])> =
+            parts.iter().map(|(p, by)| (&**p, &by[..])).collect();
+        if let Some(text) = print::equation::side_text_of_parts(&refs, style) {
+            return text;
+        }
+    }
+    lhs_string(&multiplied_out(parts), style)
 }
 
 /// [`lhs_string`] of every equation, on several threads when there is enough to print
