@@ -320,3 +320,44 @@ fn left_sides_print_the_same_from_their_parts() {
     }
     assert!(large > 0, "some side is printed from the normal form");
 }
+
+/// `symdyn derive` prints the Euler–Lagrange equations from the sides' parts (above); in LaTeX the
+/// large sides are also measured for the layout as they are printed. Both outputs are the ones
+/// printed from the derived `τ`.
+#[test]
+fn equations_print_the_same_from_the_sides_parts() {
+    use symdyn::algebra::Expr;
+    use symdyn::print::layout::Layout;
+    use symdyn::print::{self, Style};
+    use symdyn::report::{self, equalities, lhs_strings, prepared_equations, Method};
+    for example in [
+        "elbow_geared.scene",
+        "scara.scene",
+        "stanford.scene",
+        "puma560.scene",
+    ] {
+        let der = Derivation::new(example_robot(example)).expect("valid");
+        for style in [Style::Text, Style::Ascii, Style::Latex] {
+            let rhs: Vec<String> = der
+                .robot()
+                .inputs
+                .iter()
+                .map(|u| print::to_string(&Expr::sym(Symbol::new(u)), style))
+                .collect();
+            let want = if style == Style::Latex {
+                Layout::new().equations_prepared(prepared_equations(der.left_sides(), &rhs))
+            } else {
+                let lines: Vec<(String, String)> = lhs_strings(der.left_sides(), style)
+                    .into_iter()
+                    .zip(rhs)
+                    .collect();
+                equalities(&lines, style)
+            };
+            assert_eq!(
+                report::equations(&der, Method::Lagrange, style),
+                want,
+                "{example} in {style:?}"
+            );
+        }
+    }
+}

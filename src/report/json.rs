@@ -14,12 +14,11 @@
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
 use super::pretty::{doc_to_pretty, write_pretty, Doc};
-use super::{
-    lhs_string, lhs_string_of_parts, quantity_string, tau, Method, DISPLAY_BUDGET, JSON_TIDY_BUDGET,
-};
+use super::sides::{left_sides, Lhs};
+use super::{quantity_string, Method, JSON_TIDY_BUDGET};
 use crate::algebra::atom::{self, AtomId};
 use crate::algebra::{Poly, Symbol};
-use crate::dynamics::lagrange::{nonzero_christoffel, side_parts, Christoffel, SideParts};
+use crate::dynamics::lagrange::{nonzero_christoffel, Christoffel};
 use crate::dynamics::Derivation;
 use crate::parallel::{self, WORTH_SHARING};
 use crate::print::poly::{poly_to_string, Ranks, Renderer};
@@ -29,11 +28,8 @@ use std::collections::HashMap;
 
 /// One expression of a document to print.
 enum Job<'a> {
-    /// An equation's left side ([`lhs_string`]).
-    Lhs(&'a Poly),
-    /// An equation's left side by Euler–Lagrange, `τ_k`, printed from its parts
-    /// ([`side_parts`]: `D`, the Christoffel symbols and `g`), never multiplied out.
-    Side(usize, Sides<'a>),
+    /// An equation's left side.
+    Lhs(Lhs<'a>),
     /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the stage's shared renderer.
     Large(&'a Poly),
     /// A smaller quantity, tidied ([`quantity_string`]).
@@ -44,38 +40,12 @@ enum Job<'a> {
     Rates(Vec<(&'a Poly, AtomId)>),
 }
 
-/// What the Euler–Lagrange left sides are made of: `D`, the Christoffel symbols and `g`.
-#[derive(Clone, Copy)]
-struct Sides<'a> {
-    d: &'a [Vec<Poly>],
-    christoffel: &'a Christoffel,
-    g: &'a [Poly],
-}
-
-impl Sides<'_> {
-    /// The parts of `τ_k`.
-    fn parts(&self, k: usize) -> SideParts<'_> {
-        side_parts(k, self.d, self.christoffel, self.g, None)
-    }
-
-    /// The terms of `τ_k`: those of its parts (they share no monomial).
-    fn len(&self, k: usize) -> usize {
-        let n = self.d.len();
-        self.d[k].iter().map(Poly::len).sum::<usize>()
-            + (0..n)
-                .flat_map(|i| (i..n).map(move |j| (i, j)))
-                .map(|(i, j)| self.christoffel[i][j][k].len())
-                .sum::<usize>()
-            + self.g[k].len()
-    }
-}
-
 impl Job<'_> {
     /// The number of terms of the quantity.
     fn len(&self) -> usize {
         match self {
-            Job::Lhs(p) | Job::Large(p) | Job::Small(p) => p.len(),
-            Job::Side(k, sides) => sides.len(*k),
+            Job::Lhs(l) => l.len(),
+            Job::Large(p) | Job::Small(p) => p.len(),
             Job::Rates(parts) => parts.iter().map(|(p, _)| p.len()).sum(),
         }
     }
@@ -123,8 +93,7 @@ fn expanded(parts: &[(&Poly, AtomId)]) -> Poly {
 /// A job printed in ASCII.
 fn print(ranks: &Option<Ranks>, job: &Job) -> String {
     match job {
-        Job::Lhs(p) => lhs_string(p, Style::Ascii),
-        Job::Side(k, sides) => lhs_string_of_parts(&sides.parts(*k), Style::Ascii),
+        Job::Lhs(l) => l.string(Style::Ascii),
         Job::Large(p) => match ranks {
             Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
             None => poly_to_string(p, Style::Ascii),
@@ -141,9 +110,7 @@ fn print(ranks: &Option<Ranks>, job: &Job) -> String {
 /// The cost of printing a job, in [`super::side_work`]'s units.
 fn weight(job: &Job) -> usize {
     match job {
-        Job::Lhs(p) => super::side_work(p),
-        Job::Side(..) if job.len() > DISPLAY_BUDGET => 64 * job.len(),
-        Job::Side(..) => 20 * job.len() * job.len(),
+        Job::Lhs(l) => l.work(),
         Job::Large(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => 64 * job.len(),
         // Tidying costs far more per term than printing.
         _ => 20 * job.len() * job.len(),
@@ -189,26 +156,6 @@ fn coriolis_jobs<'a>(christoffel: &'a Christoffel, rates: &[AtomId]) -> Vec<Job<
             )
         })
         .collect()
-}
-
-/// The jobs of the equations' left sides: by Euler–Lagrange, from their parts when no drive has
-/// friction (whose terms hold a `q̇`), so that `τ` is never multiplied out; else `τ` as derived.
-fn left_sides(der: &Derivation, method: Method) -> Vec<Job<'_>> {
-    let robot = der.robot();
-    let n = robot.dof();
-    let frictionless = (1..=n).all(|k| {
-        let drive = robot.drive(k);
-        drive.is_none() || drive.friction(k as u32).is_zero()
-    });
-    if method != Method::Lagrange || !frictionless {
-        return tau(der, method).iter().map(Job::Lhs).collect();
-    }
-    let sides = Sides {
-        d: &der.mass_matrix().d,
-        christoffel: der.christoffel(),
-        g: &der.motion().g,
-    };
-    (0..n).map(|k| Job::Side(k, sides)).collect()
 }
 
 /// Every expression of the document: derived first (each stage of the derivation on several threads
@@ -257,7 +204,10 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         (&shared, symbols.into_iter().map(quantity).collect()),
         (&shared, coriolis_jobs(christoffel, &rates)),
         (&g_ranks, g_jobs),
-        (&None, left_sides(der, method)),
+        (
+            &None,
+            left_sides(der, method).into_iter().map(Job::Lhs).collect(),
+        ),
     ];
     let flat: Vec<(usize, &Job)> = stages
         .iter()

@@ -4,6 +4,7 @@
 mod compact;
 mod json;
 mod pretty;
+mod sides;
 
 pub use compact::{
     lagrange_json as compact_lagrange_json, lagrange_program as compact_lagrange,
@@ -148,14 +149,28 @@ pub fn quantity_string(p: &Poly, style: Style, budget: usize) -> String {
 /// long equations broken across rows ([`Layout::equations`]).
 pub fn equations(der: &Derivation, method: Method, style: Style) -> String {
     let rhs = inputs(der, style);
+    let sides = sides::left_sides(der, method);
     if style == Style::Latex {
-        return Layout::new().equations_prepared(prepared_equations(tau(der, method), &rhs));
+        return Layout::new().equations_prepared(prepared_sides(&sides, &rhs));
     }
-    let lines: Vec<(String, String)> = lhs_strings(tau(der, method), style)
-        .into_iter()
-        .zip(rhs)
-        .collect();
+    let lines: Vec<(String, String)> = side_strings(&sides, style).into_iter().zip(rhs).collect();
     equalities(&lines, style)
+}
+
+/// The left sides printed in `style`, on several threads as [`lhs_strings`].
+fn side_strings(sides: &[sides::Lhs], style: Style) -> Vec<String> {
+    print::parallel::map(sides, |l| l.work(), PARALLEL_WORK, |l| l.string(style))
+}
+
+/// The equations prepared for the LaTeX layout, on several threads as [`prepared_equations`].
+fn prepared_sides(sides: &[sides::Lhs], rhs: &[String]) -> Vec<PreparedEquation> {
+    let items: Vec<(&sides::Lhs, &String)> = sides.iter().zip(rhs).collect();
+    print::parallel::map(
+        &items,
+        |(l, _)| l.work(),
+        PARALLEL_WORK,
+        |(l, r)| l.prepared(r.to_string()),
+    )
 }
 
 /// [`equations`] written to `sink` (what `symdyn derive` prints): a large robot's text an equation
@@ -167,11 +182,11 @@ pub fn write_equations(
     sink: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
     let rhs = inputs(der, style);
+    let sides = sides::left_sides(der, method);
     if style == Style::Latex {
-        return Layout::new()
-            .write_equations_prepared(prepared_equations(tau(der, method), &rhs), sink);
+        return Layout::new().write_equations_prepared(prepared_sides(&sides, &rhs), sink);
     }
-    for (l, r) in lhs_strings(tau(der, method), style).iter().zip(&rhs) {
+    for (l, r) in side_strings(&sides, style).iter().zip(&rhs) {
         for piece in [l.as_str(), " = ", r.as_str(), "\n"] {
             sink.write_all(piece.as_bytes())?;
         }

@@ -9,8 +9,9 @@ use super::{
     measured_bytes, measured_hash, room_before, width, Left, Measured, MeasuredBody, MeasuredSum,
     PreparedEquation, BUDGET,
 };
+use crate::algebra::atom::AtomId;
 use crate::algebra::{Poly, Rational};
-use crate::print::equation::{lay_out, parentheses, separator, Sink};
+use crate::print::equation::{lay_out_parts, parentheses, separator, Sink};
 use crate::print::poly::{Ranks, Renderer};
 use crate::print::Style;
 use std::sync::Arc;
@@ -191,13 +192,30 @@ impl PreparedEquation {
     /// printed. `None` when an atom of `p` is outside the plain class, or the side could fit on one
     /// line beside `rhs`: [`PreparedEquation::new`] takes those.
     pub fn from_poly(p: &Poly, rhs: String) -> Option<PreparedEquation> {
-        let ranks = Ranks::of([p])?;
+        PreparedEquation::from_parts(&[(p, &[])], rhs)
+    }
+
+    /// [`PreparedEquation::from_poly`] of the side `Σ_i p_i · m_i` from its parts, without
+    /// multiplying it out ([`side_text_of_parts`](crate::print::equation::side_text_of_parts));
+    /// `None` also when the side cannot be laid out from them.
+    pub fn from_parts(
+        parts: &[(&Poly, &[(AtomId, i32)])],
+        rhs: String,
+    ) -> Option<PreparedEquation> {
+        let ranks = Ranks::of_lists(
+            parts
+                .iter()
+                .flat_map(|(p, by)| p.terms().iter().map(|(m, _)| m.factors()).chain([*by])),
+        )?;
+        let terms: usize = parts.iter().map(|(p, _)| p.len()).sum();
         let mut sink = Measuring {
-            frames: vec![Open::new(String::new(), 48 * p.len())],
+            frames: vec![Open::new(String::new(), 48 * terms)],
             room: room_before(&format!(" = {rhs}")),
             mixed: false,
         };
-        lay_out(p, &ranks, Style::Latex, &mut sink);
+        if !lay_out_parts(parts, &ranks, Style::Latex, &mut sink) {
+            return None;
+        }
         let side = sink.frames.pop().expect("the side's frame");
         let fits = BUDGET
             .checked_sub(2 + width(&rhs))
