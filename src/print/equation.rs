@@ -206,18 +206,24 @@ pub fn side_text(p: &Poly, style: Style) -> Option<String> {
     side_text_of_parts(&[(p, &[])], style)
 }
 
+/// The ranking of the atoms of a side's parts ([`side_text_of_parts`]) and the side's terms, or
+/// `None` if an atom is not plain.
+pub(crate) fn parts_ranks(parts: &[(&Poly, &[(AtomId, i32)])]) -> Option<(Ranks, usize)> {
+    let ranks = Ranks::of_lists(
+        parts
+            .iter()
+            .flat_map(|(p, by)| p.terms().iter().map(|(m, _)| m.factors()).chain([*by])),
+    )?;
+    Some((ranks, parts.iter().map(|(p, _)| p.len()).sum()))
+}
+
 /// [`side_text`] of the side `Σ_i p_i · m_i`, from its parts `(p_i, m_i)` (each `m_i` a product of
 /// accelerations `q̈` or rates `q̇`, distinct from the others', or none), without multiplying it
 /// out: the parts of an equation of motion, `d_kj · q̈_j`, `2 c_ijk · q̇_i q̇_j`, `g_k`. When no
 /// `p_i` holds a `q̇` or `q̈`, no two products share a monomial, and the side has exactly their
 /// terms; `None` when one does (the caller then multiplies out), or as for [`pieces`].
 pub fn side_text_of_parts(parts: &[(&Poly, &[(AtomId, i32)])], style: Style) -> Option<String> {
-    let ranks = Ranks::of_lists(
-        parts
-            .iter()
-            .flat_map(|(p, by)| p.terms().iter().map(|(m, _)| m.factors()).chain([*by])),
-    )?;
-    let terms: usize = parts.iter().map(|(p, _)| p.len()).sum();
+    let (ranks, terms) = parts_ranks(parts)?;
     let mut sink = Write {
         out: String::with_capacity(48 * terms),
         frames: vec![Frame::default()],

@@ -11,8 +11,8 @@ use super::{
 };
 use crate::algebra::atom::AtomId;
 use crate::algebra::{Poly, Rational};
-use crate::print::equation::{lay_out_parts, parentheses, separator, Sink};
-use crate::print::poly::{Ranks, Renderer};
+use crate::print::equation::{lay_out_parts, parentheses, parts_ranks, separator, Sink};
+use crate::print::poly::Renderer;
 use crate::print::Style;
 use std::sync::Arc;
 
@@ -202,12 +202,7 @@ impl PreparedEquation {
         parts: &[(&Poly, &[(AtomId, i32)])],
         rhs: String,
     ) -> Option<PreparedEquation> {
-        let ranks = Ranks::of_lists(
-            parts
-                .iter()
-                .flat_map(|(p, by)| p.terms().iter().map(|(m, _)| m.factors()).chain([*by])),
-        )?;
-        let terms: usize = parts.iter().map(|(p, _)| p.len()).sum();
+        let (ranks, terms) = parts_ranks(parts)?;
         let mut sink = Measuring {
             frames: vec![Open::new(String::new(), 48 * terms)],
             room: room_before(&format!(" = {rhs}")),
