@@ -43,6 +43,12 @@ pub(crate) fn left_sides(der: &Derivation, method: Method) -> Vec<Lhs<'_>> {
     if method != Method::Lagrange || !frictionless {
         return tau(der, method).iter().map(Lhs::Derived).collect();
     }
+    // The rates and accelerations the parts multiply by, interned here rather than by whichever
+    // printing thread asks first (their ids order nothing printed, but need not vary either).
+    for i in 1..=n as u32 {
+        crate::algebra::atom::sym(&crate::algebra::Symbol::qd(i));
+        crate::algebra::atom::sym(&crate::algebra::Symbol::qdd(i));
+    }
     let parts = Parts {
         d: &der.mass_matrix().d,
         christoffel: der.christoffel(),
