@@ -65,13 +65,16 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
 /// never multiplied out when it is printed from the normal form: the same text.
 pub fn lhs_string_of_parts(parts: &SideParts, style: Style) -> String {
     if parts.iter().map(|(p, _)| p.len()).sum::<usize>() > DISPLAY_BUDGET {
-        let refs: Vec<(&Poly, &[(AtomId, i32)])> =
-            parts.iter().map(|(p, by)| (&**p, &by[..])).collect();
-        if let Some(text) = print::equation::side_text_of_parts(&refs, style) {
+        if let Some(text) = print::equation::side_text_of_parts(&part_refs(parts), style) {
             return text;
         }
     }
     lhs_string(&multiplied_out(parts), style)
+}
+
+/// Side parts as the printers take them: each coefficient and what it multiplies.
+pub(crate) fn part_refs<'p>(parts: &'p SideParts) -> Vec<(&'p Poly, &'p [(AtomId, i32)])> {
+    parts.iter().map(|(c, by)| (&**c, &by[..])).collect()
 }
 
 /// [`lhs_string`] of every equation, on several threads when there is enough to print
@@ -87,10 +90,15 @@ pub fn lhs_strings(taus: &[Poly], style: Style) -> Vec<String> {
 /// tidying costs about the square of its terms (the numeric PUMA 560's 185-term τ₂, 2.3 ms), printing
 /// from the normal form about a quarter of a microsecond a term.
 pub(crate) fn side_work(t: &Poly) -> usize {
-    if t.len() > DISPLAY_BUDGET {
-        64 * t.len()
+    work_of_side(t.len())
+}
+
+/// [`side_work`] of a side of `terms` terms.
+pub(crate) fn work_of_side(terms: usize) -> usize {
+    if terms > DISPLAY_BUDGET {
+        64 * terms
     } else {
-        20 * t.len() * t.len()
+        20 * terms * terms
     }
 }
 

@@ -5,8 +5,9 @@
 //! them was most of what `τ` cost a large robot's `derive` (the Franka Panda's JSON: about 8 % of
 //! its instructions). The text is the same either way (tested).
 
-use super::{lhs_side, lhs_string, lhs_string_of_parts, side_work, tau, Method, DISPLAY_BUDGET};
-use crate::algebra::atom::AtomId;
+use super::{
+    lhs_side, lhs_string, lhs_string_of_parts, part_refs, tau, work_of_side, Method, DISPLAY_BUDGET,
+};
 use crate::algebra::Poly;
 use crate::dynamics::lagrange::{multiplied_out, side_parts, Christoffel, SideParts};
 use crate::dynamics::Derivation;
@@ -63,11 +64,6 @@ impl Lhs<'_> {
         side_parts(k, p.d, p.christoffel, p.g, None)
     }
 
-    /// The parts as the printers take them.
-    fn refs<'p>(parts: &'p SideParts) -> Vec<(&'p Poly, &'p [(AtomId, i32)])> {
-        parts.iter().map(|(c, by)| (&**c, &by[..])).collect()
-    }
-
     /// The number of terms: those of the parts (whose products share no monomial).
     pub(crate) fn len(&self) -> usize {
         match self {
@@ -84,13 +80,9 @@ impl Lhs<'_> {
         }
     }
 
-    /// The work of printing the side ([`side_work`]'s units).
+    /// The work of printing the side ([`super::side_work`]'s units).
     pub(crate) fn work(&self) -> usize {
-        match self {
-            Lhs::Derived(t) => side_work(t),
-            _ if self.len() > DISPLAY_BUDGET => 64 * self.len(),
-            _ => 20 * self.len() * self.len(),
-        }
+        work_of_side(self.len())
     }
 
     /// The side printed in `style`, as [`lhs_string`] prints `τ_k`.
@@ -109,8 +101,7 @@ impl Lhs<'_> {
             Lhs::Parts(k, p) => {
                 let parts = Self::parts(*k, p);
                 if self.len() > DISPLAY_BUDGET {
-                    if let Some(e) = PreparedEquation::from_parts(&Self::refs(&parts), rhs.clone())
-                    {
+                    if let Some(e) = PreparedEquation::from_parts(&part_refs(&parts), rhs.clone()) {
                         return e;
                     }
                 }
