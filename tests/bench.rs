@@ -125,6 +125,14 @@ fn quick_bench_writes_consistent_results() {
     for r in &rows {
         assert_eq!(r.len(), 12, "{r:?}");
     }
+    // What the run generated to measure is under `scratch/`, apart from the report.
+    for made in ["general-3R.scene", "random-7S0.scene", "chain-2.scene"] {
+        assert!(
+            out.join("scratch").join(made).is_file(),
+            "{made} under scratch/"
+        );
+        assert!(!out.join(made).exists(), "{made} beside the report");
+    }
     for robot in ["ppp", "rpp", "chain-1", "chain-2"] {
         for method in [
             "el",

@@ -347,11 +347,17 @@ impl Runner {
     }
 }
 
+/// The subdirectory of `--out` that holds what a run writes to measure: the generated scenes
+/// (`random-7*.scene`, `general-*R.scene`, `chain-12.scene`), code (`native/`) and sheets
+/// (`sheets/`). The report (`benchmarks.md`, the CSV files, the charts) stays in `--out`.
+pub(super) const SCRATCH: &str = "scratch";
+
 /// The pages of an example's solution sheet, from the pdflatex log (`Output written on … (N pages`);
-/// the record's `terms` hold the pages. Skipped when pdflatex is absent.
-fn sheet_pages(exe: &Path, name: &str, path: &str, dof: usize, out: &Path) -> Record {
+/// the record's `terms` hold the pages, the sheet goes under `scratch`. Skipped when pdflatex is
+/// absent.
+fn sheet_pages(exe: &Path, name: &str, path: &str, dof: usize, scratch: &Path) -> Record {
     let mut rec = Record::new(name, dof, "sheet-pages", Status::Ok);
-    let dir = out.join("sheets");
+    let dir = scratch.join("sheets");
     let tex = dir.join(format!("{name}.tex"));
     if Command::new("pdflatex").arg("--version").output().is_err() {
         rec.status = Status::Skipped;
@@ -790,6 +796,10 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     })?;
     let out = PathBuf::from(&args.out);
     std::fs::create_dir_all(&out).map_err(io_err(&out))?;
+    // What the run writes to measure (generated scenes, code and sheets) goes apart from the
+    // report, into a directory of its own that a repository can ignore.
+    let scratch = out.join(SCRATCH);
+    std::fs::create_dir_all(&scratch).map_err(io_err(&scratch))?;
     let command = std::iter::once("symdyn".to_string())
         .chain(std::env::args().skip(1).map(|a| shell_quote(&a)))
         .collect::<Vec<_>>()
@@ -916,7 +926,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             budget,
         ));
         if !args.quick {
-            records.push(sheet_pages(&runner.exe, name, &path, dof, &out));
+            records.push(sheet_pages(&runner.exe, name, &path, dof, &scratch));
         }
     }
     // Identification on random 7-joint chains (issue 10's target: under 2 s each), their angles made
@@ -929,7 +939,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
                 _ => "S",
             };
             let name = format!("random-7{tag}{seed}");
-            let scene = out.join(format!("{name}.scene"));
+            let scene = scratch.join(format!("{name}.scene"));
             let text =
                 symdyn::chains::right_angled(&symdyn::chains::random_scene(7, convention, seed));
             write(&scene, text.as_bytes())?;
@@ -947,7 +957,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     let general: &[usize] = if args.quick { &[3] } else { &[3, 6] };
     for &n in general {
         let name = format!("general-{n}R");
-        let scene = out.join(format!("{name}.scene"));
+        let scene = scratch.join(format!("{name}.scene"));
         write(&scene, symdyn::chains::general_scene(n).as_bytes())?;
         let scene_s = scene.display().to_string();
         records.push(runner.end_to_end(
@@ -962,11 +972,13 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         records.extend(run_peers(&args, limit, chains, &mut notes)?);
     }
     records.extend(super::bench_native::count_records(&mut notes));
-    records.extend(super::bench_native::native_records(&args, &out, &mut notes));
+    records.extend(super::bench_native::native_records(
+        &args, &scratch, &mut notes,
+    ));
     // `symdyn codegen` itself, every quantity, on the largest all-symbolic chain.
     let big = chains.max(1);
-    let scene = out.join(format!("chain-{big}.scene"));
-    let code = out.join("native").join(format!("chain-{big}"));
+    let scene = scratch.join(format!("chain-{big}.scene"));
+    let code = scratch.join("native").join(format!("chain-{big}"));
     write(&scene, symdyn::chains::chain_scene(big).as_bytes())?;
     let (scene_s, code_s) = (scene.display().to_string(), code.display().to_string());
     records.push(runner.end_to_end(

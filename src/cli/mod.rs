@@ -286,7 +286,8 @@ pub enum Command {
         /// Fewer chains (n ≤ 6), shorter evaluation loops, a 10 s limit per process.
         #[arg(long)]
         quick: bool,
-        /// The output directory.
+        /// The output directory (what a run generates to measure, scenes, code and sheets, goes into
+        /// its `scratch/` subdirectory).
         #[arg(long, default_value = "docs")]
         out: String,
         /// Also run the Python peers (bench/peers/el_peer.py in a virtual environment).

@@ -60,28 +60,15 @@ fn quantity(p: &Poly) -> Job<'_> {
     }
 }
 
-/// The ranking of the atoms of the large quantities among `jobs` (a [`Job::Rates`]'s parts and
-/// multipliers), which their renderer shares: the text does not depend on which atoms are ranked
-/// with them.
+/// The ranking of the atoms of the large quantities ([`Job::Large`]) among `jobs`, which their
+/// renderer shares: the text does not depend on which atoms are ranked with them. (The Christoffel
+/// symbols and `C` take one ranking of their own, built in [`print_all`].)
 fn ranks(jobs: &[Job]) -> Option<Ranks> {
-    let large = jobs.iter().filter(|j| j.len() > JSON_TIDY_BUDGET);
-    let rates: Vec<[(AtomId, i32); 1]> = large
-        .clone()
-        .flat_map(|j| match j {
-            Job::Rates(parts) => parts.iter().map(|&(_, x)| [(x, 1)]).collect(),
-            _ => Vec::new(),
-        })
-        .collect();
-    let polys = large.flat_map(|j| match j {
-        Job::Large(p) => vec![*p],
-        Job::Rates(parts) => parts.iter().map(|(p, _)| *p).collect(),
-        _ => Vec::new(),
+    let large = jobs.iter().filter_map(|j| match j {
+        Job::Large(p) => Some(*p),
+        _ => None,
     });
-    Ranks::of_lists(
-        polys
-            .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
-            .chain(rates.iter().map(|x| &x[..])),
-    )
+    Ranks::of_lists(large.flat_map(|p| p.terms().iter().map(|(m, _)| m.factors())))
 }
 
 /// `Σ_i p_i x_i` expanded.
