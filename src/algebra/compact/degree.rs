@@ -65,6 +65,30 @@ impl Degrees {
     }
 
     fn max_with(&mut self, o: &Degrees) {
+        // In place when every variable of `o` is here already (the usual case after a sum's first
+        // terms); taking the larger bound twice changes nothing, so a miss falls through to the
+        // merge below.
+        let mut i = 0;
+        let mut within = true;
+        for &(v, b) in &o.0 {
+            while i < self.0.len() && self.0[i].0 < v {
+                i += 1;
+            }
+            match self.0.get_mut(i) {
+                Some((x, bound)) if *x == v => {
+                    bound.pos = bound.pos.max(b.pos);
+                    bound.neg = bound.neg.max(b.neg);
+                    i += 1;
+                }
+                _ => {
+                    within = false;
+                    break;
+                }
+            }
+        }
+        if within {
+            return;
+        }
         let mut out = Vec::with_capacity(self.0.len() + o.0.len());
         let (a, b) = (&self.0, &o.0);
         let (mut i, mut j) = (0, 0);
@@ -131,6 +155,8 @@ pub fn is_angle(v: Var) -> bool {
 pub struct DegreeBounds<'a> {
     arena: &'a Compact,
     memo: Vec<Option<Result<Degrees, Unsupported>>>,
+    /// The names met by a traversal of [`DegreeBounds::of`] (bounded, or about to be).
+    seen: Vec<bool>,
 }
 
 impl<'a> DegreeBounds<'a> {
@@ -139,33 +165,48 @@ impl<'a> DegreeBounds<'a> {
         DegreeBounds {
             arena,
             memo: vec![None; arena.len()],
+            seen: vec![false; arena.len()],
         }
     }
 
     /// The degree bounds of `p`.
     pub fn of(&mut self, p: &Poly) -> Result<Degrees, Unsupported> {
         // Names first, in definition order, so the recursion below is one level deep.
-        for k in self.arena.live([p]) {
-            if self.memo[k].is_none() {
-                let value = &self.arena.defs()[k].value;
-                let d = self.poly(value);
-                self.memo[k] = Some(d);
+        // Only the names not bounded by an earlier call are visited: a claim's sides share most
+        // of their names with the claims before it.
+        let mut need: Vec<usize> = Vec::new();
+        let mut stack = self.arena.names_in(p);
+        while let Some(k) = stack.pop() {
+            if std::mem::replace(&mut self.seen[k], true) {
+                continue;
             }
+            need.push(k);
+            stack.extend(self.arena.names_in(&self.arena.defs()[k].value));
+        }
+        need.sort_unstable();
+        for k in need {
+            let d = self.poly(&self.arena.defs()[k].value);
+            self.memo[k] = Some(d);
         }
         self.poly(p)
     }
 
     fn poly(&self, p: &Poly) -> Result<Degrees, Unsupported> {
         let mut out = Degrees::default();
+        let mut term = Degrees::default();
         for (m, _) in p.terms() {
-            let mut term = Degrees::default();
+            term.0.clear();
             for &(id, e) in m.factors() {
                 if let Some(k) = self.arena.index_of(id) {
-                    let d = self.memo[k].clone().expect("names bounded in order")?;
+                    let d = match &self.memo[k] {
+                        Some(Ok(d)) => d,
+                        Some(Err(u)) => return Err(u.clone()),
+                        None => unreachable!("names bounded in order"),
+                    };
                     if e < 0 {
                         return Err(Unsupported(id));
                     }
-                    term.add_scaled(&d, e as u64);
+                    term.add_scaled(d, e as u64);
                     continue;
                 }
                 match atom::class(id) {

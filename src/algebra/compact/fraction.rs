@@ -46,22 +46,57 @@ impl Int {
         matches!(self, Int::Small(0))
     }
 
+    /// `self · o`, without copying a large operand. A large value never fits `i128` (see
+    /// [`Int::from_big`]), so neither does a product of two, nor an overflowed small product.
     fn mul(&self, o: &Int) -> Int {
-        if let (Int::Small(a), Int::Small(b)) = (self, o) {
-            if let Some(p) = a.checked_mul(*b) {
-                return Int::Small(p);
-            }
+        match (self, o) {
+            (Int::Small(a), Int::Small(b)) => match a.checked_mul(*b) {
+                Some(p) => Int::Small(p),
+                None => Int::Big(BigInt::from(*a) * *b),
+            },
+            (Int::Big(a), Int::Big(b)) => Int::Big(a * b),
+            (Int::Big(a), Int::Small(b)) | (Int::Small(b), Int::Big(a)) => Int::from_big(a * *b),
         }
-        Int::from_big(self.big() * o.big())
     }
 
-    fn add(&self, o: &Int) -> Int {
-        if let (Int::Small(a), Int::Small(b)) = (self, o) {
-            if let Some(s) = a.checked_add(*b) {
-                return Int::Small(s);
+    /// `self *= o`: in place when `o` is small (a scalar multiplication of the large value).
+    fn mul_assign(&mut self, o: &Int) {
+        match (&mut *self, o) {
+            (Int::Big(a), Int::Small(b)) => {
+                *a *= *b;
+                self.shrink();
+            }
+            _ => *self = self.mul(o),
+        }
+    }
+
+    /// `self += o`, in place; a large sum that comes back into `i128` becomes small again (so zero
+    /// is always `Small(0)`).
+    fn add_assign(&mut self, o: &Int) {
+        match (&mut *self, o) {
+            (Int::Small(a), Int::Small(b)) => match a.checked_add(*b) {
+                Some(s) => *a = s,
+                None => *self = Int::Big(BigInt::from(*a) + *b),
+            },
+            (Int::Small(a), Int::Big(b)) => *self = Int::from_big(b + *a),
+            (Int::Big(a), Int::Small(b)) => {
+                *a += *b;
+                self.shrink();
+            }
+            (Int::Big(a), Int::Big(b)) => {
+                *a += b;
+                self.shrink();
             }
         }
-        Int::from_big(self.big() + o.big())
+    }
+
+    /// A large value that fits `i128`, made small.
+    fn shrink(&mut self) {
+        if let Int::Big(b) = self {
+            if let Some(s) = b.to_i128() {
+                *self = Int::Small(s);
+            }
+        }
     }
 }
 
@@ -285,7 +320,7 @@ impl Plan {
                 for &(slot, e) in &t.factors {
                     let s = slot as usize;
                     for _ in 0..e {
-                        n = n.mul(&num[s]);
+                        n.mul_assign(&num[s]);
                     }
                     for (te, se) in term_exp.iter_mut().zip(&exp[s * nb..(s + 1) * nb]) {
                         *te += se * e;
@@ -330,13 +365,18 @@ impl Values {
         }
         let mut acc = Int::Small(0);
         for (n, e) in terms {
-            let mut n = n.clone();
+            // The term raised to the top exponents, copied only when a factor changes it.
+            let mut raised: Option<Int> = None;
             for b in 0..nb {
                 if top[b] > e[b] {
-                    n = n.mul(self.pow(b, top[b] - e[b]));
+                    let p = self.pow(b, top[b] - e[b]);
+                    match &mut raised {
+                        Some(r) => r.mul_assign(p),
+                        None => raised = Some(n.mul(p)),
+                    }
                 }
             }
-            acc = acc.add(&n);
+            acc.add_assign(raised.as_ref().unwrap_or(n));
         }
         if acc.is_zero() {
             top.iter_mut().for_each(|e| *e = 0);
@@ -395,6 +435,37 @@ mod tests {
             &Rational::one() - &(&t * &t)
         };
         &n * &w.recip().expect("non-zero")
+    }
+
+    /// The integers agree with `BigInt` arithmetic across the `i128` boundary both ways, and a
+    /// result that fits `i128` is small (so zero is always `Small(0)`, which the zero test reads).
+    #[test]
+    fn ints_cross_the_i128_boundary_both_ways() {
+        let max = BigInt::from(i128::MAX);
+        let values: Vec<BigInt> = [i128::MAX, i128::MIN, i128::MAX / 3, -7, 0, 1, -1]
+            .into_iter()
+            .map(BigInt::from)
+            .chain([&max * 5u32 + 1, -(&max * 5u32), -(&max * &max)])
+            .collect();
+        for a in &values {
+            for b in &values {
+                let (x, y) = (Int::from_big(a.clone()), Int::from_big(b.clone()));
+                let product = x.mul(&y);
+                assert_eq!(product.big(), a * b, "{a} * {b}");
+                assert_eq!(
+                    matches!(product, Int::Small(_)),
+                    (a * b).to_i128().is_some()
+                );
+                let mut in_place = x.clone();
+                in_place.mul_assign(&y);
+                assert_eq!(in_place, product, "{a} *= {b}");
+                let mut sum = x.clone();
+                sum.add_assign(&y);
+                assert_eq!(sum.big(), a + b, "{a} + {b}");
+                assert_eq!(matches!(sum, Int::Small(_)), (a + b).to_i128().is_some());
+                assert_eq!(sum.is_zero(), (a + b) == BigInt::from(0));
+            }
+        }
     }
 
     /// The structured fractions give the same rationals as plain rational evaluation, small and
