@@ -267,6 +267,14 @@ impl Plan {
         })
     }
 
+    /// The number of factors in the plan's terms: the size of an evaluation.
+    pub fn size(&self) -> usize {
+        self.sums
+            .iter()
+            .flat_map(|sum| sum.iter().map(|t| t.factors.len().max(1)))
+            .sum()
+    }
+
     /// The values of the outputs at the point where each symbol has the integer value `point[atom]`
     /// and each angle (keyed by its `sin` atom) the half-angle tangent `point[angle]`. Every symbol
     /// and angle of the plan must have a value.

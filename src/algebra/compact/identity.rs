@@ -25,6 +25,7 @@ use super::Compact;
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::random::Rng;
 use crate::algebra::{Poly, Rational};
+use crate::parallel;
 
 /// How identities are proved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -223,22 +224,42 @@ fn randomized(
             return finish(result, degree, points, bits, d);
         }
     };
+    // The points are drawn first, in order, then evaluated each on its own (the plan is read-only),
+    // on several threads when the plan is large; the first point in that order where a claim's
+    // sides differ is its witness, so the outcome is the same on any number of threads.
     let mut rng = Rng::new(opts.seed);
-    for _ in 0..points {
-        let point: FxHashMap<Var, i64> = vars.iter().map(|&v| (v, rng.positive(bits))).collect();
-        let mut values = plan.eval(&point);
-        for (j, &s) in live.iter().enumerate() {
-            if result[s].is_some() {
-                continue;
-            }
-            if !values.equal(2 * j, 2 * j + 1) {
-                let (l, r) = (values.to_rational(2 * j), values.to_rational(2 * j + 1));
-                result[s] = Some(Outcome::NotEqual(Some(witness(&point, &l, &r))));
+    let drawn: Vec<FxHashMap<Var, i64>> = (0..points)
+        .map(|_| vars.iter().map(|&v| (v, rng.positive(bits))).collect())
+        .collect();
+    let differences = parallel::map(
+        &drawn,
+        |_| plan.size().saturating_mul(EVAL_WEIGHT),
+        parallel::WORTH_SHARING,
+        |point| {
+            let mut values = plan.eval(point);
+            (0..live.len())
+                .map(|j| {
+                    (!values.equal(2 * j, 2 * j + 1))
+                        .then(|| (values.to_rational(2 * j), values.to_rational(2 * j + 1)))
+                })
+                .collect::<Vec<_>>()
+        },
+    );
+    for (point, differ) in drawn.iter().zip(differences) {
+        for (&s, lr) in live.iter().zip(differ) {
+            if let (None, Some((l, r))) = (&result[s], lr) {
+                result[s] = Some(Outcome::NotEqual(Some(witness(point, &l, &r))));
             }
         }
     }
     finish(result, degree, points, bits, d)
 }
+
+/// The cost of evaluating one factor of a plan's terms at a point, in [`parallel::map`]'s units
+/// (about 3 ns), at the least: a product of numbers within `i128` takes tens of instructions, one
+/// of hundreds of bits (the 4-joint chain's) about a thousand. So a small plan stays on this thread
+/// and a large one is shared.
+const EVAL_WEIGHT: usize = 10;
 
 /// Every claim not refuted (nor undecided) at the points is proved equal.
 fn finish(
