@@ -12,7 +12,9 @@
 //!   frames, whose expansion is then the Newton–Euler side in body frames; in the inertial frame it
 //!   is the expanded recursion's, [`crate::dynamics::ne_symbolic`]), the expanded derivations are
 //!   compared by the exact zero test of the canonical normal form, as a worked solution would:
-//!   [`ClaimProof::Exact`];
+//!   [`ClaimProof::Exact`]. The expansion is not attempted when a lower bound on `τ`'s terms from
+//!   `D` and the Christoffel symbols already passes the budget (`terms_below_tau`): it would fail,
+//!   after expanding nearly every name;
 //! - beyond it, the compact quantities are compared by exact rational evaluation at random points
 //!   ([`crate::algebra::compact::identity`]), with the Schwartz–Zippel bound on the chance of a wrong
 //!   "equal" below `2^−128`: [`ClaimProof::Randomized`]. A difference found at a point is a definite
@@ -24,6 +26,7 @@
 //! SymEngine's whole unsimplified derivation. `symdyn check --budget N` raises it.
 
 use super::derivation::Derivation;
+use super::lagrange::{christoffel_symbols, MassMatrix};
 use super::ne_symbolic::Frame;
 use crate::algebra::calculus::poly_dt;
 use crate::algebra::compact::identity::{prove, Outcome, Proof, ProofOptions, Witness};
@@ -127,11 +130,14 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
     let mut probe = cd.arena.expander(opts.proof.budget);
     // The compact Newton–Euler τ (body frames) expanded, if every τ_k fits the budget: the
     // Newton–Euler side of the exact proof in body frames, and the sign that the proofs are exact.
-    let tau_body: Option<Vec<Poly>> = if opts.proof.budget > 0 {
-        cd.tau_ne.iter().map(|t| probe.expand(t).ok()).collect()
-    } else {
-        None
-    };
+    // Not attempted when some τ_k surely has more terms (`surely_over`): for the 4-joint chain and
+    // the Stanford arm that expansion was a third of the check, and in vain.
+    let tau_body: Option<Vec<Poly>> =
+        if opts.proof.budget > 0 && !surely_over(der, opts.proof.budget) {
+            cd.tau_ne.iter().map(|t| probe.expand(t).ok()).collect()
+        } else {
+            None
+        };
     if let Some(tau_body) = tau_body {
         // Newton–Euler in the inertial frame is the costliest derivation here (its vectors hold
         // every angle from the base on) and depends on no other: a thread derives it meanwhile,
@@ -161,6 +167,91 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
     }
     randomized(der, opts)
 }
+
+/// Whether some expanded `τ_k` surely has more than `budget` terms, told from `D` and the
+/// Christoffel symbols without expanding `τ` ([`terms_below_tau`]).
+fn surely_over(der: &Derivation, budget: usize) -> bool {
+    terms_below_tau(der, budget).map_or(true, |bounds| bounds.iter().any(|&t| t > budget))
+}
+
+/// A lower bound on the terms of each expanded `τ_k`: `Σ_j |d_kj| + Σ_{i≤j} |c_ijk|`. The
+/// equation is `τ_k = Σ_j d_kj q̈_j + Σ_{i,j} c_ijk q̇_i q̇_j + g_k` with no rate in `d`, `c` or `g`,
+/// so each `d_kj q̈_j` and each `(2 − δ_ij) c_ijk q̇_i q̇_j` (`i ≤ j`) keeps its terms apart from
+/// every other part's (more terms still for `g_k`, friction and the drives).
+///
+/// Up to [`EXPANDED_BOUND`] joints `D` and the Christoffel symbols are the expanded derivation's,
+/// which the exact proof reuses. Beyond, `D` is the compact one expanded within `budget` terms per
+/// entry, from the last row up (the short entries first, whose names the longer ones reuse): an
+/// entry too long to expand counts no terms (its row's bound stays a bound, and the Christoffel
+/// symbols are not derived), and `Err(())` says that an entry alone is longer than the budget, so
+/// its row's `τ_k` is too.
+fn terms_below_tau(der: &Derivation, budget: usize) -> Result<Vec<usize>, ()> {
+    let n = der.robot().dof();
+    let rows = |d: &[Vec<Poly>]| -> Vec<usize> {
+        d.iter().map(|r| r.iter().map(Poly::len).sum()).collect()
+    };
+    let with_rates = |rows: Vec<usize>, c: &[Vec<Vec<Poly>>]| -> Vec<usize> {
+        (0..n)
+            .map(|k| {
+                let rates: usize = (0..n)
+                    .flat_map(|i| (i..n).map(move |j| (i, j)))
+                    .map(|(i, j)| c[i][j][k].len())
+                    .sum();
+                rows[k] + rates
+            })
+            .collect()
+    };
+    if n <= EXPANDED_BOUND {
+        return Ok(with_rates(rows(&der.mass_matrix().d), der.christoffel()));
+    }
+    let cd = der.compact();
+    let mut ex = cd
+        .arena
+        .expander(budget)
+        .with_total(D_WORK.saturating_mul(budget));
+    let mut d = vec![vec![Poly::zero(); n]; n];
+    let mut whole = true;
+    for a in (0..n).rev() {
+        for b in (a..n).rev() {
+            match ex.expand(&cd.d[a][b]) {
+                Ok(entry) => {
+                    d[b][a] = entry.clone();
+                    d[a][b] = entry;
+                }
+                Err(e) if e.certain => return Err(()),
+                Err(_) => whole = false,
+            }
+        }
+    }
+    let rows = rows(&d);
+    // Bound enough already, or not all of D at hand, or D so short that its Christoffel symbols
+    // would not take the bound past the budget either (they hold at most about five times D's
+    // terms on the examples): they are not derived.
+    let max = rows.iter().copied().max().unwrap_or(0);
+    if !whole || max > budget || RATES_PER_TERM * max <= budget {
+        return Ok(rows);
+    }
+    let c = christoffel_symbols(&MassMatrix {
+        d: std::sync::Arc::new(d),
+        constant: cd.d_constant,
+    });
+    Ok(with_rates(rows, &c))
+}
+
+/// The most term products [`terms_below_tau`] spends expanding the compact `D`, per term of the
+/// budget: the 5- and 6-joint chains, the Stanford arm, the PUMA 560 and the Franka Panda take at
+/// most 17 (the 6-joint chain); a longer chain would spend more than the expansion of `τ` it is to
+/// spare, and gives up.
+const D_WORK: usize = 20;
+
+/// How many times `D`'s longest row of terms the Christoffel symbols must be able to add for
+/// [`terms_below_tau`] to derive them.
+const RATES_PER_TERM: usize = 6;
+
+/// The joints up to which [`terms_below_tau`] bounds `τ` by the expanded derivation's `D` and
+/// Christoffel symbols (derived in a fraction of a millisecond, and needed by the exact proof that
+/// such a robot usually gets); beyond, by the compact `D` expanded within the budget.
+const EXPANDED_BOUND: usize = 4;
 
 /// The claims decided on the compact quantities by random points.
 fn randomized(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
@@ -371,7 +462,56 @@ pub fn witness_text(w: &Witness) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::chains::chain;
     use crate::parse::{parse_scene, BUILTIN_PPP};
+
+    /// The bound on `τ`'s terms is `τ`'s terms less `g`'s for a robot without friction (the parts
+    /// `d_kj q̈_j` and `c_ijk q̇_i q̇_j` keep their terms apart), from the expanded derivation up to
+    /// four joints and from the compact `D` beyond; it decides that the 4- and 5-joint chains'
+    /// `τ_1` pass 1000 terms (1054 and 3865), and not the 3-joint chain's (263).
+    #[test]
+    fn the_bound_on_tau_is_its_terms_less_gravity_s_and_decides_the_budget() {
+        let scara = parse_scene(include_str!("../../examples/scara.scene"))
+            .expect("parses")
+            .robot;
+        let ppp = parse_scene(BUILTIN_PPP).expect("parses").robot;
+        // The 5-joint chain's bound comes from the compact D: within a budget its rows stay below
+        // (1346 terms at most), and that six times them would pass (so that the Christoffel
+        // symbols are derived).
+        let robots = [
+            (ppp, usize::MAX),
+            (scara, usize::MAX),
+            (chain(2), usize::MAX),
+            (chain(3), usize::MAX),
+            (chain(4), usize::MAX),
+            (chain(5), 4000),
+        ];
+        for (robot, budget) in robots {
+            let name = robot.name.clone();
+            let der = Derivation::new(robot).expect("valid");
+            let cd = der.compact();
+            let mut ex = cd.arena.expander(usize::MAX);
+            let bounds = terms_below_tau(&der, budget).expect("bounded");
+            for k in 0..der.robot().dof() {
+                let tau = ex.expand(&cd.tau_ne[k]).expect("expands").len();
+                let g = ex.expand(&cd.g[k]).expect("expands").len();
+                assert_eq!(bounds[k] + g, tau, "{name}: τ_{}", k + 1);
+            }
+        }
+        let over = |n: usize| surely_over(&Derivation::new(chain(n)).expect("valid"), 1000);
+        assert!(!over(3));
+        assert!(over(4));
+        assert!(over(5));
+        // Within a larger budget the 5-joint chain is not over (its τ_1 has 3865 terms).
+        assert!(!surely_over(
+            &Derivation::new(chain(5)).expect("valid"),
+            4000
+        ));
+        assert!(surely_over(
+            &Derivation::new(chain(5)).expect("valid"),
+            3800
+        ));
+    }
 
     /// The exact comparison is term by term: the compact Newton–Euler `τ` expanded agrees with
     /// Euler–Lagrange, and one changed term in one equation is that equation's failure.

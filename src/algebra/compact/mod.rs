@@ -126,6 +126,10 @@ pub struct OverBudget {
     pub name: String,
     /// The budget, in terms.
     pub budget: usize,
+    /// Whether the quantity asked for is known to have more terms than the budget: it was
+    /// expanded whole and is longer. Otherwise a name it needs was too long (the quantity itself
+    /// could still cancel to within the budget), or the expansion was too much work to try.
+    pub certain: bool,
 }
 
 /// A short name of an atom for messages: the symbol's ASCII name, `sin(x)`, `cos(x)`, or its
@@ -408,20 +412,21 @@ impl Expander<'_> {
                 let e = OverBudget {
                     name: def.symbol.ascii_name(),
                     budget: self.budget,
+                    certain: false,
                 };
                 self.over.insert(k as u32, e.clone());
                 return Err(e);
             };
             self.memo.insert(k as u32, value);
         }
-        let out = self.substitute(p);
-        let Some(out) = out.filter(|o| o.len() <= self.budget) else {
-            return Err(OverBudget {
+        match self.substitute(p) {
+            Some(out) if out.len() <= self.budget => Ok(out),
+            out => Err(OverBudget {
                 name: "the result".into(),
                 budget: self.budget,
-            });
-        };
-        Ok(out)
+                certain: out.is_some(),
+            }),
+        }
     }
 
     /// Whether expanding `p` multiplies out at most [`WORK_PER_TERM`] times the budget in term
