@@ -371,20 +371,27 @@ impl Values {
                 *t = (*t).max(*x);
             }
         }
+        // Terms over the same exponents are added first and raised once: one multiplication per
+        // exponent vector rather than per term (the sum is the same integer).
+        let mut order: Vec<usize> = (0..terms.len()).collect();
+        order.sort_unstable_by(|&a, &b| terms[a].1.cmp(&terms[b].1));
         let mut acc = Int::Small(0);
-        for (n, e) in terms {
-            // The term raised to the top exponents, copied only when a factor changes it.
-            let mut raised: Option<Int> = None;
+        let mut k = 0;
+        while k < order.len() {
+            let e = &terms[order[k]].1;
+            let mut group = terms[order[k]].0.clone();
+            k += 1;
+            while k < order.len() && terms[order[k]].1 == *e {
+                group.add_assign(&terms[order[k]].0);
+                k += 1;
+            }
             for b in 0..nb {
-                if top[b] > e[b] {
+                if top[b] > e[b] && !group.is_zero() {
                     let p = self.pow(b, top[b] - e[b]);
-                    match &mut raised {
-                        Some(r) => r.mul_assign(p),
-                        None => raised = Some(n.mul(p)),
-                    }
+                    group.mul_assign(p);
                 }
             }
-            acc.add_assign(raised.as_ref().unwrap_or(n));
+            acc.add_assign(&group);
         }
         if acc.is_zero() {
             top.iter_mut().for_each(|e| *e = 0);
