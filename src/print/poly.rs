@@ -154,24 +154,69 @@ pub(super) fn prefix_key(factors: &[(u32, i32)]) -> Option<u128> {
     Some(key)
 }
 
-/// Sorts the terms `(start, end, coefficient)` of `buf` in the canonical order of their factor
-/// lists ([`cmp_factor_lists`]), by [`prefix_key`] first and the whole lists only on a tie (lists
-/// longer than eight factors): the same order, without walking two lists for most comparisons.
-fn sort_terms(terms: &mut [(usize, usize, &Rational)], buf: &[(u32, i32)]) {
-    let keys: Option<Vec<u128>> = terms.iter().map(|t| prefix_key(&buf[t.0..t.1])).collect();
+/// A term of a sum to print: its factor list (`buf[start..end]`, by rank), its coefficient, its
+/// index among its polynomial's terms, and the text it may be copied from ([`Term::lent`]).
+#[derive(Clone, Copy)]
+struct Term<'c> {
+    start: usize,
+    end: usize,
+    c: &'c Rational,
+    index: u32,
+    /// The magnitude of the same term without its last factor, printed by a renderer of the same
+    /// ranks and style: this term is that text, the separator and the last factor.
+    lent: Option<&'c str>,
+}
+
+impl<'c> Term<'c> {
+    /// A term of its own (nothing lent).
+    fn new(start: usize, end: usize, c: &'c Rational, index: usize) -> Term<'c> {
+        Term {
+            start,
+            end,
+            c,
+            index: index as u32,
+            lent: None,
+        }
+    }
+}
+
+/// Sorts the terms of `buf` in the canonical order of their factor lists ([`cmp_factor_lists`]),
+/// by [`prefix_key`] first and the whole lists only on a tie (lists longer than eight factors):
+/// the same order, without walking two lists for most comparisons.
+fn sort_terms(terms: &mut [Term], buf: &[(u32, i32)]) {
+    let list = |t: &Term| &buf[t.start..t.end];
+    let keys: Option<Vec<u128>> = terms.iter().map(|t| prefix_key(list(t))).collect();
     let Some(keys) = keys else {
-        terms.sort_by(|a, b| cmp_factor_lists(&buf[a.0..a.1], &buf[b.0..b.1]));
+        terms.sort_by(|a, b| cmp_factor_lists(list(a), list(b)));
         return;
     };
     let mut keyed: Vec<(u128, usize)> = keys.into_iter().zip(0..).collect();
-    let list = |i: usize| &buf[terms[i].0..terms[i].1];
     // Distinct monomials have distinct lists, so an unstable sort gives the one order.
     keyed.sort_unstable_by(|a, b| {
         a.0.cmp(&b.0)
-            .then_with(|| cmp_factor_lists(list(a.1), list(b.1)))
+            .then_with(|| cmp_factor_lists(list(&terms[a.1]), list(&terms[b.1])))
     });
-    let sorted: Vec<(usize, usize, &Rational)> = keyed.iter().map(|&(_, i)| terms[i]).collect();
+    let sorted: Vec<Term> = keyed.iter().map(|&(_, i)| terms[i]).collect();
     terms.copy_from_slice(&sorted);
+}
+
+/// A sum printed by [`Renderer::sum_with_terms`]: its text, and where the magnitude of each of
+/// its polynomial's terms lies in it (`ranges[t]`, by the term's index), for
+/// [`Renderer::sum_of_multiples`] to copy.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TermTexts {
+    /// The text of the sum.
+    pub text: String,
+    /// The byte range of each term's magnitude in `text`.
+    pub ranges: Vec<(u32, u32)>,
+}
+
+impl TermTexts {
+    /// The magnitude of term `t`.
+    fn term(&self, t: usize) -> &str {
+        let (a, b) = self.ranges[t];
+        &self.text[a as usize..b as usize]
+    }
 }
 
 /// Renders products of ranked atoms in one style, each `base^e` rendered once: the text the product
@@ -490,22 +535,37 @@ impl<'a> Renderer<'a> {
 
     /// The canonical sum of `p`'s terms, printed (`nested`: compact unless a term has a space).
     pub fn sum(&mut self, p: &Poly, nested: bool) -> String {
-        // Every term's factors by rank, in one buffer; the terms as ranges of it, then sorted.
+        let (buf, terms) = self.ranked_terms(p);
+        self.sorted_sum(&buf, terms, nested, None)
+    }
+
+    /// [`Renderer::sum`] (not nested), with where each term's text lies in it.
+    pub fn sum_with_terms(&mut self, p: &Poly) -> TermTexts {
+        let (buf, terms) = self.ranked_terms(p);
+        let mut ranges = vec![(0, 0); p.len()];
+        let text = self.sorted_sum(&buf, terms, false, Some(&mut ranges));
+        TermTexts { text, ranges }
+    }
+
+    /// `p`'s terms, each factor list by rank in one buffer and the terms as ranges of it (the
+    /// constant term last, as an empty list), not yet sorted.
+    fn ranked_terms<'p>(&self, p: &'p Poly) -> (Vec<(u32, i32)>, Vec<Term<'p>>) {
         let mut buf: Vec<(u32, i32)> =
             Vec::with_capacity(p.terms().iter().map(|(m, _)| m.factors().len()).sum());
-        let mut terms: Vec<(usize, usize, &Rational)> = Vec::with_capacity(p.len());
+        let mut terms: Vec<Term> = Vec::with_capacity(p.len());
         let mut constant = None;
-        for (m, c) in p.terms() {
+        for (t, (m, c)) in p.terms().iter().enumerate() {
             if m.factors().is_empty() {
-                constant = Some(c);
+                constant = Some(Term::new(0, 0, c, t));
                 continue;
             }
             let start = buf.len();
             buf.extend(m.factors().iter().map(|&(id, e)| (self.ranks.rank(id), e)));
             buf[start..].sort_unstable_by_key(|&(r, _)| r);
-            terms.push((start, buf.len(), c));
+            terms.push(Term::new(start, buf.len(), c, t));
         }
-        self.sorted_sum(&buf, terms, constant, nested)
+        terms.extend(constant);
+        (buf, terms)
     }
 
     /// The canonical sum of `Σ_i p_i x_i`, printed as [`Renderer::sum`] prints its expansion, which
@@ -513,58 +573,82 @@ impl<'a> Renderer<'a> {
     /// atoms `x_i` are distinct and no monomial of `p_i` holds `x_i`, the expansion is each term of
     /// each `p_i` times its `x_i` (no two share a monomial, so nothing merges); `None` when a
     /// monomial holds its `x_i` after all. Every `x_i` of a non-zero `p_i` must have been ranked.
-    pub fn sum_of_multiples(&mut self, parts: &[(&Poly, AtomId)], nested: bool) -> Option<String> {
+    ///
+    /// A part may come with its own text ([`Renderer::sum_with_terms`], by a renderer of the same
+    /// ranks and style): outside LaTeX (which sets a function's argument apart by what follows it)
+    /// a term whose `x_i` is its last factor is then that term's text, the separator and `x_i`,
+    /// copied rather than printed again.
+    pub fn sum_of_multiples(
+        &mut self,
+        parts: &[(&Poly, AtomId, Option<&TermTexts>)],
+        nested: bool,
+    ) -> Option<String> {
         debug_assert!(
             parts
                 .iter()
                 .enumerate()
-                .all(|(i, (_, x))| parts[..i].iter().all(|(_, y)| y != x)),
+                .all(|(i, (_, x, _))| parts[..i].iter().all(|(_, y, _)| y != x)),
             "the multipliers are distinct"
         );
-        let len: usize = parts.iter().map(|(p, _)| p.len()).sum();
+        let len: usize = parts.iter().map(|(p, _, _)| p.len()).sum();
         let mut buf: Vec<(u32, i32)> = Vec::with_capacity(
             len + parts
                 .iter()
-                .flat_map(|(p, _)| p.terms())
+                .flat_map(|(p, _, _)| p.terms())
                 .map(|(m, _)| m.factors().len())
                 .sum::<usize>(),
         );
-        let mut terms: Vec<(usize, usize, &Rational)> = Vec::with_capacity(len);
-        for &(p, x) in parts.iter().filter(|(p, _)| !p.is_zero()) {
+        let mut terms: Vec<Term> = Vec::with_capacity(len);
+        let lends = self.style != Style::Latex;
+        for &(p, x, texts) in parts.iter().filter(|(p, _, _)| !p.is_zero()) {
             let x = self.ranks.rank(x);
-            for (m, c) in p.terms() {
+            for (t, (m, c)) in p.terms().iter().enumerate() {
                 let start = buf.len();
                 buf.extend(m.factors().iter().map(|&(id, e)| (self.ranks.rank(id), e)));
                 buf.push((x, 1));
+                let mut term = Term::new(start, buf.len(), c, t);
                 let list = &mut buf[start..];
                 list.sort_unstable_by_key(|&(r, _)| r);
                 if list.windows(2).any(|w| w[0].0 == w[1].0) {
                     return None;
                 }
-                terms.push((start, buf.len(), c));
+                // `1` alone (a constant term ±1) is not written before a factor.
+                // (A product with a negative power is written as a fraction.)
+                let copies =
+                    lends && list.last() == Some(&(x, 1)) && list.iter().all(|&(_, e)| e > 0);
+                term.lent = texts
+                    .filter(|_| copies)
+                    .map(|texts| texts.term(t))
+                    .filter(|&text| text != "1");
+                terms.push(term);
             }
         }
-        Some(self.sorted_sum(&buf, terms, None, nested))
+        Some(self.sorted_sum(&buf, terms, nested, None))
     }
 
-    /// The sum of `terms` (ranges of `buf`, each a factor list by rank, and a coefficient) in the
-    /// canonical order, then the constant term, printed.
-    fn sorted_sum<'c>(
+    /// The sum of `terms` (ranges of `buf`, each a factor list by rank, and a coefficient, the
+    /// constant term, if any, last) in the canonical order, printed; `ranges`, if asked for (not
+    /// nested), takes where each term's magnitude lies in the text, by the term's index.
+    fn sorted_sum(
         &mut self,
         buf: &[(u32, i32)],
-        mut terms: Vec<(usize, usize, &'c Rational)>,
-        constant: Option<&'c Rational>,
+        mut terms: Vec<Term>,
         nested: bool,
+        mut ranges: Option<&mut Vec<(u32, u32)>>,
     ) -> String {
+        let constant = terms.pop_if(|t| t.start == t.end);
         sort_terms(&mut terms, buf);
-        if let Some(c) = constant {
-            terms.push((0, 0, c));
-        }
+        terms.extend(constant);
         if nested {
-            let signs: Vec<bool> = terms.iter().map(|(_, _, c)| c.is_negative()).collect();
+            debug_assert!(ranges.is_none(), "a nested sum's terms are not recorded");
+            let signs: Vec<bool> = terms.iter().map(|t| t.c.is_negative()).collect();
             let bodies: Vec<String> = terms
                 .iter()
-                .map(|&(s, e, c)| self.product(c, &buf[s..e]))
+                .map(|t| {
+                    let mut body = String::new();
+                    self.write_term(&mut body, t, buf);
+                    body
+                })
                 .collect();
             return join_signed(&signs, &bodies, nested);
         }
@@ -573,16 +657,33 @@ impl<'a> Renderer<'a> {
         }
         // Not nested: always spaced, so every term is written straight into the text.
         let mut out = String::with_capacity(8 * buf.len() + 8 * terms.len());
-        for (i, &(s, e, c)) in terms.iter().enumerate() {
-            match (i, c.is_negative()) {
+        for (i, t) in terms.iter().enumerate() {
+            match (i, t.c.is_negative()) {
                 (0, false) => {}
                 (0, true) => out.push('-'),
                 (_, false) => out.push_str(" + "),
                 (_, true) => out.push_str(" - "),
             }
-            self.product_into(&mut out, c, &buf[s..e]);
+            let start = out.len() as u32;
+            self.write_term(&mut out, t, buf);
+            if let Some(ranges) = ranges.as_deref_mut() {
+                ranges[t.index as usize] = (start, out.len() as u32);
+            }
         }
         out
+    }
+
+    /// Appends the magnitude of a term: copied from its lent text and its last factor, or printed.
+    fn write_term(&mut self, out: &mut String, t: &Term, buf: &[(u32, i32)]) {
+        let factors = &buf[t.start..t.end];
+        match (t.lent, factors.last()) {
+            (Some(text), Some(&(x, e))) => {
+                out.push_str(text);
+                out.push(if self.style == Style::Ascii { '*' } else { ' ' });
+                self.push_factor(out, &mut Measure::default(), x, e, false);
+            }
+            _ => self.product_into(out, t.c, factors),
+        }
     }
 }
 
@@ -670,15 +771,16 @@ mod tests {
                 }
                 let start = buf.len();
                 buf.extend(l);
-                terms.push((start, buf.len(), &one));
+                terms.push(Term::new(start, buf.len(), &one, terms.len()));
             }
             // Keep distinct lists only, as a polynomial's monomials are.
-            terms.sort_by(|a, b| cmp_factor_lists(&buf[a.0..a.1], &buf[b.0..b.1]));
-            terms.dedup_by(|a, b| buf[a.0..a.1] == buf[b.0..b.1]);
-            let want: Vec<&[(u32, i32)]> = terms.iter().map(|t| &buf[t.0..t.1]).collect();
+            let list = |t: &Term| &buf[t.start..t.end];
+            terms.sort_by(|a, b| cmp_factor_lists(list(a), list(b)));
+            terms.dedup_by(|a, b| list(a) == list(b));
+            let want: Vec<&[(u32, i32)]> = terms.iter().map(list).collect();
             terms.reverse();
             sort_terms(&mut terms, &buf);
-            let got: Vec<&[(u32, i32)]> = terms.iter().map(|t| &buf[t.0..t.1]).collect();
+            let got: Vec<&[(u32, i32)]> = terms.iter().map(list).collect();
             proptest::prop_assert_eq!(got, want);
         }
     }
@@ -803,10 +905,30 @@ mod tests {
     }
 
     #[test]
+    fn a_sum_prints_where_each_term_lies() {
+        let q = p("m2*lc2^2*sin(q2)*cos(q2) - 3/2*l1*cos(q2)^2 + sqrt(2)*qd1 - 1 + I1/l1");
+        let ranks = Ranks::of([&q]).expect("plain atoms");
+        for style in [Style::Text, Style::Ascii, Style::Latex] {
+            let texts = Renderer::new(&ranks, style).sum_with_terms(&q);
+            assert_eq!(texts.text, Renderer::new(&ranks, style).sum(&q, false));
+            for (t, (m, c)) in q.terms().iter().enumerate() {
+                let factors = ranked(&ranks, m.factors());
+                assert_eq!(
+                    texts.term(t),
+                    Renderer::new(&ranks, style).product(&c.abs(), &factors),
+                    "term {t} in {style:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn a_sum_of_multiples_prints_as_its_expansion() {
         // The multipliers rank after the factors (q̇, as in C(q, q̇)), before them (a parameter) or
-        // among them (`cos(q1)` among sines and cosines); a constant term becomes a multiple.
-        let cases: [&[(&str, &str)]; 3] = [
+        // among them (`cos(q1)` among sines and cosines); a constant term becomes a multiple, ±1
+        // among them, and a negative power makes a fraction. Each is printed from the parts alone
+        // and with the parts' own texts lent (copied where the multiplier comes last).
+        let cases: [&[(&str, &str)]; 4] = [
             &[
                 ("m2*lc2^2*sin(q2)*cos(q2) - 3/2*l1*cos(q2)^2 + 5", "qd1"),
                 ("-m2*l1*lc2*sin(q2)", "qd2"),
@@ -817,23 +939,34 @@ mod tests {
                 ("b*sin(q2) + 7/3", "l1"),
             ],
             &[("sin(q1)*sin(q2) - sin(q3)^3 + 2*I1", "cos(q1)")],
+            &[
+                ("sqrt(3)*sin(q1) - 1 + I2/m2 + sqrt(2)", "qd2"),
+                ("1 - 2/3*cos(q2)*sin(q1)", "qd1"),
+            ],
         ];
         for parts in cases {
             let parts: Vec<(Poly, Poly)> = parts.iter().map(|(c, x)| (p(c), p(x))).collect();
             let expanded = Poly::sum(&parts.iter().map(|(c, x)| c.mul(x)).collect::<Vec<_>>());
-            let atoms: Vec<(&Poly, AtomId)> = parts
-                .iter()
-                .map(|(c, x)| (c, x.terms()[0].0.factors()[0].0))
-                .collect();
             let ranks = Ranks::of([&expanded]).expect("plain atoms");
             for style in [Style::Text, Style::Ascii, Style::Latex] {
-                for nested in [false, true] {
-                    let mut r = Renderer::new(&ranks, style);
-                    assert_eq!(
-                        r.sum_of_multiples(&atoms, nested),
-                        Some(Renderer::new(&ranks, style).sum(&expanded, nested)),
-                        "{parts:?} in {style:?}"
-                    );
+                let texts: Vec<TermTexts> = parts
+                    .iter()
+                    .map(|(c, _)| Renderer::new(&ranks, style).sum_with_terms(c))
+                    .collect();
+                for lent in [false, true] {
+                    let atoms: Vec<(&Poly, AtomId, Option<&TermTexts>)> = parts
+                        .iter()
+                        .zip(&texts)
+                        .map(|((c, x), t)| (c, x.terms()[0].0.factors()[0].0, lent.then_some(t)))
+                        .collect();
+                    for nested in [false, true] {
+                        let mut r = Renderer::new(&ranks, style);
+                        assert_eq!(
+                            r.sum_of_multiples(&atoms, nested),
+                            Some(Renderer::new(&ranks, style).sum(&expanded, nested)),
+                            "{parts:?} in {style:?}, lent: {lent}"
+                        );
+                    }
                 }
             }
         }
@@ -842,7 +975,7 @@ mod tests {
         let ranks = Ranks::of([&c.mul(&x)]).expect("plain atoms");
         let x = x.terms()[0].0.factors()[0].0;
         assert_eq!(
-            Renderer::new(&ranks, Style::Text).sum_of_multiples(&[(&c, x)], false),
+            Renderer::new(&ranks, Style::Text).sum_of_multiples(&[(&c, x, None)], false),
             None
         );
     }

@@ -21,7 +21,7 @@ use crate::algebra::{Poly, Symbol};
 use crate::dynamics::lagrange::{nonzero_christoffel, Christoffel};
 use crate::dynamics::Derivation;
 use crate::parallel::{self, WORTH_SHARING};
-use crate::print::poly::{poly_to_string, Ranks, Renderer};
+use crate::print::poly::{poly_to_string, Ranks, Renderer, TermTexts};
 use crate::print::Style;
 use serde_json::Value;
 use std::collections::HashMap;
@@ -32,12 +32,16 @@ enum Job<'a> {
     Lhs(Lhs<'a>),
     /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the stage's shared renderer.
     Large(&'a Poly),
+    /// A Christoffel symbol past [`JSON_TIDY_BUDGET`] terms: as [`Job::Large`], with where each of
+    /// its terms lies in the text, for the entries of `C` to copy.
+    Symbol(&'a Poly),
     /// A smaller quantity, tidied ([`quantity_string`]).
     Small(&'a Poly),
     /// An entry of `C(q, q̇)`, `c_kj = Σ_i c_ijk q̇_i`, printed from the Christoffel symbols (the
-    /// non-zero ones, each with its `q̇_i`) as a quantity of that many terms: no `c_ijk` holds a
-    /// `q̇`, so the sum has a term for each of theirs.
-    Rates(Vec<(&'a Poly, AtomId)>),
+    /// non-zero ones, each with its `q̇_i` and the index of its printed twin among the symbols with
+    /// `i ≤ j`) as a quantity of that many terms: no `c_ijk` holds a `q̇`, so the sum has a term
+    /// for each of theirs.
+    Rates(Vec<(&'a Poly, AtomId, usize)>),
 }
 
 impl Job<'_> {
@@ -45,8 +49,8 @@ impl Job<'_> {
     fn len(&self) -> usize {
         match self {
             Job::Lhs(l) => l.len(),
-            Job::Large(p) | Job::Small(p) => p.len(),
-            Job::Rates(parts) => parts.iter().map(|(p, _)| p.len()).sum(),
+            Job::Large(p) | Job::Symbol(p) | Job::Small(p) => p.len(),
+            Job::Rates(parts) => parts.iter().map(|(p, _, _)| p.len()).sum(),
         }
     }
 }
@@ -72,25 +76,43 @@ fn ranks(jobs: &[Job]) -> Option<Ranks> {
 }
 
 /// `Σ_i p_i x_i` expanded.
-fn expanded(parts: &[(&Poly, AtomId)]) -> Poly {
-    let terms: Vec<Poly> = parts.iter().map(|&(p, x)| p.mul(&Poly::atom(x))).collect();
+fn expanded(parts: &[(&Poly, AtomId, usize)]) -> Poly {
+    let terms: Vec<Poly> = parts
+        .iter()
+        .map(|&(p, x, _)| p.mul(&Poly::atom(x)))
+        .collect();
     Poly::sum(&terms)
 }
 
-/// A job printed in ASCII.
-fn print(ranks: &Option<Ranks>, job: &Job) -> String {
-    match job {
+/// A job printed in ASCII, with where its terms lie for a [`Job::Symbol`] (no ranges otherwise).
+/// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can.
+fn print(ranks: &Option<Ranks>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
+    let text = match job {
         Job::Lhs(l) => l.string(Style::Ascii),
         Job::Large(p) => match ranks {
             Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
             None => poly_to_string(p, Style::Ascii),
         },
+        Job::Symbol(p) => match ranks {
+            Some(r) => return Renderer::new(r, Style::Ascii).sum_with_terms(p),
+            None => poly_to_string(p, Style::Ascii),
+        },
         Job::Small(p) => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
         Job::Rates(parts) if job.len() > JSON_TIDY_BUDGET => ranks
             .as_ref()
-            .and_then(|r| Renderer::new(r, Style::Ascii).sum_of_multiples(parts, false))
+            .and_then(|r| {
+                let lent: Vec<(&Poly, AtomId, Option<&TermTexts>)> = parts
+                    .iter()
+                    .map(|&(p, x, s)| (p, x, symbols.get(s).filter(|t| !t.ranges.is_empty())))
+                    .collect();
+                Renderer::new(r, Style::Ascii).sum_of_multiples(&lent, false)
+            })
             .unwrap_or_else(|| poly_to_string(&expanded(parts), Style::Ascii)),
         Job::Rates(parts) => quantity_string(&expanded(parts), Style::Ascii, JSON_TIDY_BUDGET),
+    };
+    TermTexts {
+        text,
+        ranges: Vec::new(),
     }
 }
 
@@ -98,7 +120,9 @@ fn print(ranks: &Option<Ranks>, job: &Job) -> String {
 fn weight(job: &Job) -> usize {
     match job {
         Job::Lhs(l) => l.work(),
-        Job::Large(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => 64 * job.len(),
+        Job::Large(_) | Job::Symbol(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => {
+            64 * job.len()
+        }
         // Tidying costs far more per term than printing.
         _ => 20 * job.len() * job.len(),
     }
@@ -129,16 +153,20 @@ fn rate_atoms(n: usize) -> Vec<AtomId> {
 }
 
 /// The entries of `C(q, q̇)`, row by row, as jobs on the Christoffel symbols ([`Job::Rates`]);
-/// `rates` are [`rate_atoms`].
-fn coriolis_jobs<'a>(christoffel: &'a Christoffel, rates: &[AtomId]) -> Vec<Job<'a>> {
+/// `rates` are [`rate_atoms`], `printed[i][j][k]` the index of `c_ijk`'s printed twin (0-based).
+fn coriolis_jobs<'a>(
+    christoffel: &'a Christoffel,
+    rates: &[AtomId],
+    printed: &[Vec<Vec<usize>>],
+) -> Vec<Job<'a>> {
     let n = christoffel.len();
     (0..n)
         .flat_map(|k| (0..n).map(move |j| (k, j)))
         .map(|(k, j)| {
             Job::Rates(
                 (0..n)
-                    .map(|i| (&christoffel[i][j][k], rates[i]))
-                    .filter(|(c, _)| !c.is_zero())
+                    .map(|i| (&christoffel[i][j][k], rates[i], printed[i][j][k]))
+                    .filter(|(c, _, _)| !c.is_zero())
                     .collect(),
             )
         })
@@ -146,9 +174,9 @@ fn coriolis_jobs<'a>(christoffel: &'a Christoffel, rates: &[AtomId]) -> Vec<Job<
 }
 
 /// Every expression of the document: derived first (each stage of the derivation on several threads
-/// for a large robot), then printed on several threads ([`parallel::map`], heaviest first). `C` is
-/// printed from the Christoffel symbols and never expanded. The text is the same on any number of
-/// threads.
+/// for a large robot), then printed on several threads ([`parallel::map`], heaviest first), `C`
+/// last: it is printed from the Christoffel symbols, never expanded, copying their printed terms
+/// where it can. The text is the same on any number of threads.
 ///
 /// Printing the stages beside the derivation (a helper thread printing `D` while the Christoffel
 /// symbols are derived, and so on) was measured slower on two cores: the derivation then runs on one
@@ -159,18 +187,24 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
     let d = &der.mass_matrix().d;
     let christoffel = der.christoffel();
     let motion = der.motion();
+    let n = d.len();
     // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
-    let d_jobs: Vec<Job> = upper(d.len())
+    let d_jobs: Vec<Job> = upper(n)
         .into_iter()
         .map(|(k, j)| quantity(&d[k][j]))
         .collect();
     // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
-    let symbols: Vec<&Poly> = nonzero_christoffel(christoffel)
-        .into_iter()
-        .filter(|(i, jj, _, _)| i <= jj)
-        .map(|(_, _, _, c)| c)
-        .collect();
-    let rates = rate_atoms(d.len());
+    let mut printed = vec![vec![vec![usize::MAX; n]; n]; n];
+    let mut symbols: Vec<&Poly> = Vec::new();
+    for (i, j, k, c) in nonzero_christoffel(christoffel) {
+        if i <= j {
+            let (i, j, k) = (i - 1, j - 1, k - 1);
+            printed[i][j][k] = symbols.len();
+            printed[j][i][k] = symbols.len();
+            symbols.push(c);
+        }
+    }
+    let rates = rate_atoms(n);
     // The symbols and C share one ranking: the symbols with i ≤ j hold every atom of C but its q̇.
     let singles: Vec<[(AtomId, i32); 1]> = rates.iter().map(|&x| [(x, 1)]).collect();
     let shared = Ranks::of_lists(
@@ -186,10 +220,16 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         .map(quantity)
         .collect();
     let (d_ranks, g_ranks) = (ranks(&d_jobs), ranks(&g_jobs));
-    let stages: [(&Option<Ranks>, Vec<Job>); 5] = [
+    let symbol_jobs = symbols
+        .iter()
+        .map(|&p| match quantity(p) {
+            Job::Large(p) => Job::Symbol(p),
+            small => small,
+        })
+        .collect();
+    let stages: [(&Option<Ranks>, Vec<Job>); 4] = [
         (&d_ranks, d_jobs),
-        (&shared, symbols.into_iter().map(quantity).collect()),
-        (&shared, coriolis_jobs(christoffel, &rates)),
+        (&shared, symbol_jobs),
         (&g_ranks, g_jobs),
         (
             &None,
@@ -201,25 +241,32 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         .enumerate()
         .flat_map(|(s, (_, jobs))| jobs.iter().map(move |j| (s, j)))
         .collect();
-    let mut printed = parallel::map(
+    let mut texts = parallel::map(
         &flat,
         |(_, j)| weight(j),
         WORTH_SHARING,
-        |&(s, j)| print(stages[s].0, j),
+        |&(s, j)| print(stages[s].0, j, &[]),
     )
     .into_iter();
     let mut next = |s: usize| {
-        printed
+        texts
             .by_ref()
             .take(stages[s].1.len())
-            .collect::<Vec<String>>()
+            .collect::<Vec<TermTexts>>()
     };
+    let strings = |t: Vec<TermTexts>| t.into_iter().map(|t| t.text).collect::<Vec<String>>();
+    let (d_upper, symbols) = (strings(next(0)), next(1));
+    let (potential, lhs) = (strings(next(2)), strings(next(3)));
+    let c_jobs = coriolis_jobs(christoffel, &rates, &printed);
+    let coriolis = parallel::map(&c_jobs, weight, WORTH_SHARING, |j| {
+        print(&shared, j, &symbols).text
+    });
     Printed {
-        d_upper: next(0),
-        symbols: next(1),
-        coriolis: next(2),
-        potential: next(3),
-        lhs: next(4),
+        d_upper,
+        symbols: strings(symbols),
+        coriolis,
+        potential,
+        lhs,
     }
 }
 
@@ -347,4 +394,46 @@ pub fn write_json(
     let printed = print_all(der, method);
     let meta = Meta::new(der, method);
     write_pretty(&document(der, method, &printed, &meta), sink)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse::parse_scene;
+
+    /// The entries of `C` are printed from the Christoffel symbols, copying their printed terms:
+    /// each large one is the text of the expanded entry, and the symbols' texts are theirs (the
+    /// Stanford arm, whose symbols and `C` pass the tidy budget).
+    #[test]
+    fn coriolis_copied_from_the_symbols_prints_as_the_expanded_entries() {
+        let robot = parse_scene(include_str!("../../examples/stanford.scene"))
+            .expect("valid")
+            .robot;
+        let der = Derivation::new(robot).expect("valid");
+        let printed = print_all(&der, Method::Lagrange);
+        let n = der.robot().dof();
+        let mut large = 0;
+        for k in 0..n {
+            for j in 0..n {
+                let c = &der.coriolis()[k][j];
+                if c.len() > JSON_TIDY_BUDGET {
+                    large += 1;
+                    assert_eq!(
+                        printed.coriolis[k * n + j],
+                        poly_to_string(c, Style::Ascii),
+                        "C{k}{j}"
+                    );
+                }
+            }
+        }
+        assert!(large > 0, "some entries of C are large");
+        let symbols = nonzero_christoffel(der.christoffel())
+            .into_iter()
+            .filter(|(i, j, _, _)| i <= j);
+        for ((i, j, k, c), text) in symbols.zip(&printed.symbols) {
+            if c.len() > JSON_TIDY_BUDGET {
+                assert_eq!(*text, poly_to_string(c, Style::Ascii), "c{i}{j}{k}");
+            }
+        }
+    }
 }
