@@ -177,14 +177,13 @@ fn role(id: AtomId) -> Role {
 /// A term split by rank: (rank, exponent) factors, sorted.
 type Factors = Vec<(u32, i32)>;
 
-/// One term of a side, its factors in a buffer shared by all terms: `key` factors first (the
-/// accelerations, the rates, or the trig factors, by `stage`), then the coefficient's, each part
-/// sorted by rank.
+/// One term of a side, its factors in a buffer shared by all terms: its `key` factors (the
+/// accelerations, the rates, or the trig factors, by `stage`) and its coefficient's (`rest`), each
+/// a range of the buffer sorted by rank. The terms of one part share their key's range.
 struct Split<'p> {
     stage: u8,
-    start: u32,
-    mid: u32,
-    end: u32,
+    key: (u32, u32),
+    rest: (u32, u32),
     coeff: &'p Rational,
 }
 
@@ -275,55 +274,102 @@ pub(crate) fn lay_out_parts(
             .sum(),
     );
     let mut splits: Vec<Split> = Vec::with_capacity(parts.iter().map(|(p, _)| p.len()).sum());
-    let mut scratch: Factors = Vec::new();
-    for (m, c) in parts
-        .iter()
-        .flat_map(|&(p, by)| p.terms().iter().map(move |(m, c)| ((m, by), c)))
-    {
-        let (m, by) = m;
-        scratch.clear();
-        scratch.extend(m.factors().iter().map(|&(id, e)| (ranks.rank(id), e)));
-        if !whole
-            && scratch
-                .iter()
-                .any(|&(r, _)| matches!(roles[r as usize], Role::Acceleration | Role::Rate))
-        {
-            return false;
-        }
-        scratch.extend(by.iter().map(|&(id, e)| (ranks.rank(id), e)));
-        scratch.sort_unstable_by_key(|&(r, _)| r);
-        let has = |want: Role| scratch.iter().any(|&(r, _)| roles[r as usize] == want);
-        let (stage, key) = if has(Role::Acceleration) {
+    let push_ranked = |out: &mut Factors, factors: &[(AtomId, i32)]| {
+        out.extend(factors.iter().map(|&(id, e)| (ranks.rank(id), e)));
+    };
+    let moving = |f: &[(u32, i32)]| {
+        f.iter()
+            .any(|&(r, _)| matches!(roles[r as usize], Role::Acceleration | Role::Rate))
+    };
+    let key_of = |f: &[(u32, i32)]| {
+        let has = |want: Role| f.iter().any(|&(r, _)| roles[r as usize] == want);
+        if has(Role::Acceleration) {
             (0, Role::Acceleration)
         } else if has(Role::Rate) {
             (1, Role::Rate)
         } else {
             (2, Role::Trig)
-        };
-        let start = buf.len() as u32;
-        buf.extend(scratch.iter().filter(|&&(r, _)| roles[r as usize] == key));
-        let mid = buf.len() as u32;
-        buf.extend(scratch.iter().filter(|&&(r, _)| roles[r as usize] != key));
-        splits.push(Split {
-            stage,
-            start,
-            mid,
-            end: buf.len() as u32,
-            coeff: c,
-        });
+        }
+    };
+    let mut scratch: Factors = Vec::new();
+    for &(p, by_atoms) in parts {
+        let mut by: Factors = Vec::with_capacity(by_atoms.len());
+        push_ranked(&mut by, by_atoms);
+        by.sort_unstable_by_key(|&(r, _)| r);
+        if !whole && moving(&by) {
+            // Every term of the part has the part's key (its accelerations, else its rates): the
+            // terms themselves hold neither, or the side is not laid out from its parts.
+            let (stage, key_role) = key_of(&by);
+            let start = buf.len() as u32;
+            buf.extend(by.iter().filter(|&&(r, _)| roles[r as usize] == key_role));
+            let key = (start, buf.len() as u32);
+            by.retain(|&(r, _)| roles[r as usize] != key_role);
+            for (m, c) in p.terms() {
+                let start = buf.len();
+                push_ranked(&mut buf, m.factors());
+                if moving(&buf[start..]) {
+                    return false;
+                }
+                buf.extend_from_slice(&by);
+                buf[start..].sort_unstable_by_key(|&(r, _)| r);
+                splits.push(Split {
+                    stage,
+                    key,
+                    rest: (start as u32, buf.len() as u32),
+                    coeff: c,
+                });
+            }
+            continue;
+        }
+        for (m, c) in p.terms() {
+            scratch.clear();
+            push_ranked(&mut scratch, m.factors());
+            if !whole && moving(&scratch) {
+                return false;
+            }
+            scratch.extend_from_slice(&by);
+            scratch.sort_unstable_by_key(|&(r, _)| r);
+            let (stage, key_role) = key_of(&scratch);
+            let start = buf.len() as u32;
+            buf.extend(
+                scratch
+                    .iter()
+                    .filter(|&&(r, _)| roles[r as usize] == key_role),
+            );
+            let mid = buf.len() as u32;
+            buf.extend(
+                scratch
+                    .iter()
+                    .filter(|&&(r, _)| roles[r as usize] != key_role),
+            );
+            splits.push(Split {
+                stage,
+                key: (start, mid),
+                rest: (mid, buf.len() as u32),
+                coeff: c,
+            });
+        }
     }
-    // key → the terms with it, and each stage's keys in first-seen order (sorted below).
+    let range = |(a, b): (u32, u32)| &buf[a as usize..b as usize];
+    // key → the terms with it, and each stage's keys in first-seen order (sorted below). A part's
+    // terms share their key's range, so only a new range is looked up.
     let mut groups: FxHashMap<&[(u32, i32)], Vec<u32>> = FxHashMap::default();
     let mut keys: [Vec<&[(u32, i32)]>; 3] = Default::default();
+    let mut last: Option<((u32, u32), &mut Vec<u32>)> = None;
     for (i, t) in splits.iter().enumerate() {
-        let key = &buf[t.start as usize..t.mid as usize];
-        groups
-            .entry(key)
-            .or_insert_with(|| {
-                keys[t.stage as usize].push(key);
-                Vec::new()
-            })
-            .push(i as u32);
+        if let Some((k, members)) = &mut last {
+            if *k == t.key {
+                members.push(i as u32);
+                continue;
+            }
+        }
+        let key = range(t.key);
+        let members = groups.entry(key).or_insert_with(|| {
+            keys[t.stage as usize].push(key);
+            Vec::new()
+        });
+        members.push(i as u32);
+        last = Some((t.key, members));
     }
     // q̈ by coordinate index, q̇ products in canonical order (both are ranked by it); the rest:
     // simpler trig monomials first (fewer trig factors), then canonical order.
@@ -339,7 +385,7 @@ pub(crate) fn lay_out_parts(
             .iter()
             .map(|&i| {
                 let t = &splits[i as usize];
-                (&buf[t.mid as usize..t.end as usize], t.coeff)
+                (range(t.rest), t.coeff)
             })
             .collect();
         shown(sink, &mut r, &roles, coeff, key);
@@ -411,6 +457,11 @@ type Led = (Option<(u32, i32)>, usize, usize, usize);
 /// its power): `m2 (l1^2 + lc2^2) + I2`. Groups in the order of their leads, the terms without a
 /// parameter last; within a group, the terms in the canonical order of what is left of them.
 fn grouped(sink: &mut impl Sink, r: &mut Renderer, roles: &[Role], terms: &[Coefficient]) {
+    let led = |f: &[(u32, i32)]| f.iter().any(|&(r, _)| roles[r as usize] == Role::Param);
+    if !terms.iter().any(|(f, _)| led(f)) {
+        // No parameter: one run, in the canonical order of the terms' own factors.
+        return in_order(sink, r, terms);
+    }
     // Sorted by lead, then by the rest.
     let mut rest: Factors = Vec::with_capacity(terms.iter().map(|(f, _)| f.len()).sum());
     let mut entries: Vec<Led> = Vec::with_capacity(terms.len());
@@ -459,6 +510,32 @@ fn grouped(sink: &mut impl Sink, r: &mut Renderer, roles: &[Role], terms: &[Coef
                 sink.close(r, &[]);
             }
         }
+    }
+}
+
+/// The terms given to `sink` in the canonical order of their factor lists (by
+/// [`super::poly::prefix_key`] first, the whole lists only on a tie).
+fn in_order(sink: &mut impl Sink, r: &mut Renderer, terms: &[Coefficient]) {
+    let full = |a: usize, b: usize| super::poly::cmp_factor_lists(terms[a].0, terms[b].0);
+    let keys: Option<Vec<(u128, usize)>> = terms
+        .iter()
+        .enumerate()
+        .map(|(i, (f, _))| super::poly::prefix_key(f).map(|k| (k, i)))
+        .collect();
+    let order: Vec<usize> = match keys {
+        Some(mut keyed) => {
+            // Distinct terms have distinct lists, so the order is total.
+            keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| full(a.1, b.1)));
+            keyed.into_iter().map(|(_, i)| i).collect()
+        }
+        None => {
+            let mut order: Vec<usize> = (0..terms.len()).collect();
+            order.sort_by(|&a, &b| full(a, b));
+            order
+        }
+    };
+    for i in order {
+        sink.product(r, terms[i].1, terms[i].0);
     }
 }
 
@@ -666,7 +743,9 @@ mod tests {
     }
 
     /// A side from its parts is the side of their sum; a part that holds a rate or an acceleration
-    /// could share a monomial with another's product, so it is not laid out from parts.
+    /// could share a monomial with another's product, so it is not laid out from parts. (Among the
+    /// parts: one without a parameter, whose terms are not grouped by one, and one multiplied by an
+    /// acceleration and a rate, whose rate joins its coefficient's factors.)
     #[test]
     fn a_side_from_its_parts_is_the_side_of_their_sum() {
         let parts = [
@@ -674,6 +753,8 @@ mod tests {
             ("m2*lc2^2 + I2", "qdd2"),
             ("-m2*l1*lc2*sin(q2)", "qd1*qd2"),
             ("-1/2*m2*l1*lc2*sin(q2)", "qd2^2"),
+            ("sin(q2)*cos(q2) - 3*cos(q2)^2 + 1/2", "qd1^2"),
+            ("2*m1*sin(q2) - cos(q2) + lc2", "qdd2*qd1"),
             ("g*m2*lc2*cos(q1 + q2) + g*(m1*lc1 + m2*l1)*cos(q1)", "1"),
         ];
         let polys: Vec<(Poly, Poly)> = parts.iter().map(|(c, m)| (p(c), p(m))).collect();
@@ -695,6 +776,17 @@ mod tests {
             );
             assert!(side_text_of_parts(&refs, style).is_some());
         }
+        // Without a parameter, a coefficient's terms come in the canonical order of its sum (a
+        // constant term, which the sum puts last, would come first, as the shortest product).
+        let c = p("sin(q2)*cos(q2) - 3*cos(q2)^2 + sin(q1)*sin(q2)^3 - cos(q1)");
+        let qd1 = p("qd1^2").terms()[0].0.factors().to_vec();
+        let canonical = super::super::poly::poly_to_string(&c, Style::Ascii)
+            .replace(" + ", "+")
+            .replace(" - ", "-");
+        assert_eq!(
+            side_text_of_parts(&[(&c, &qd1[..])], Style::Ascii),
+            Some(format!("({canonical})*qd1^2"))
+        );
         let (holds, qd2) = (p("qd1*sin(q2) + 1"), p("qd2"));
         let qd2 = qd2.terms()[0].0.factors().to_vec();
         assert_eq!(side_text_of_parts(&[(&holds, &qd2[..])], Style::Text), None);
