@@ -10,7 +10,9 @@
 //! `τ_k` in terms):
 //! - while every `τ_k` expands within the budget (probed on the compact Newton–Euler `τ` in body
 //!   frames, whose expansion is then the Newton–Euler side in body frames; in the inertial frame it
-//!   is the expanded recursion's, [`crate::dynamics::ne_symbolic`]), the expanded derivations are
+//!   is the expanded recursion's, [`crate::dynamics::ne_symbolic`]; a sheet, which derives the
+//!   expanded recursion in body frames anyway, takes its `τ` instead: [`CheckOptions::expanded_ne`]),
+//!   the expanded derivations are
 //!   compared by the exact zero test of the canonical normal form, as a worked solution would:
 //!   [`ClaimProof::Exact`]. The expansion is not attempted when a lower bound on `τ`'s terms from
 //!   `D` and the Christoffel symbols already passes the budget (`terms_below_tau`): it would fail,
@@ -84,6 +86,12 @@ pub struct CheckOptions {
     pub frames: Vec<Frame>,
     /// The proof's budget, confidence and seed.
     pub proof: ProofOptions,
+    /// Whether the Newton–Euler `τ` in body frames is the expanded recursion's
+    /// ([`Derivation::newton_euler`]) rather than the compact `τ` expanded: for a caller that
+    /// derives that recursion anyway (a sheet that prints it), so that the compact derivation is not
+    /// made only to be expanded again. The exact proof then applies while every such `τ_k` has at
+    /// most the budget's terms.
+    pub expanded_ne: bool,
 }
 
 /// The default budget of the exact proof: the largest expanded `τ_k`, in terms.
@@ -97,6 +105,7 @@ impl Default for CheckOptions {
                 budget: EXACT_BUDGET,
                 ..ProofOptions::default()
             },
+            expanded_ne: false,
         }
     }
 }
@@ -126,18 +135,22 @@ struct Pending {
 
 /// Proves the claims with the given options (see the [module docs](self)).
 pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
-    let cd = der.compact();
-    let mut probe = cd.arena.expander(opts.proof.budget);
+    let budget = opts.proof.budget;
     // The compact Newton–Euler τ (body frames) expanded, if every τ_k fits the budget: the
-    // Newton–Euler side of the exact proof in body frames, and the sign that the proofs are exact.
-    // Not attempted when some τ_k surely has more terms (`surely_over`): for the 4-joint chain and
-    // the Stanford arm that expansion was a third of the check, and in vain.
-    let tau_body: Option<Vec<Poly>> =
-        if opts.proof.budget > 0 && !surely_over(der, opts.proof.budget) {
-            cd.tau_ne.iter().map(|t| probe.expand(t).ok()).collect()
-        } else {
-            None
-        };
+    // Newton–Euler side of the exact proof in body frames, and the sign that the proofs are exact
+    // (or the expanded recursion's τ, `expanded_ne`). Not attempted when some τ_k surely has more
+    // terms (`surely_over`): for the 4-joint chain and the Stanford arm that expansion was a third
+    // of the check, and in vain.
+    let tau_body: Option<Vec<Poly>> = if budget == 0 || surely_over(der, budget) {
+        None
+    } else if opts.expanded_ne {
+        let tau = &der.newton_euler(Frame::Body).tau;
+        tau.iter().all(|t| t.len() <= budget).then(|| tau.clone())
+    } else {
+        let cd = der.compact();
+        let mut probe = cd.arena.expander(budget);
+        cd.tau_ne.iter().map(|t| probe.expand(t).ok()).collect()
+    };
     if let Some(tau_body) = tau_body {
         // Newton–Euler in the inertial frame is the costliest derivation here (its vectors hold
         // every angle from the base on) and depends on no other: a thread derives it meanwhile,
@@ -511,6 +524,43 @@ mod tests {
             &Derivation::new(chain(5)).expect("valid"),
             3800
         ));
+    }
+
+    /// The Newton–Euler `τ` in body frames taken from the expanded recursion (`expanded_ne`, as a
+    /// sheet does) decides every claim as the compact `τ` expanded does, without deriving the
+    /// compact dynamics when it fits; past the budget both take the randomized proof.
+    #[test]
+    fn the_expanded_recursion_s_tau_proves_as_the_compact_one() {
+        let scara = parse_scene(include_str!("../../examples/scara.scene"))
+            .expect("parses")
+            .robot;
+        let ppp = parse_scene(BUILTIN_PPP).expect("parses").robot;
+        for (robot, budget) in [
+            (ppp, 1000),
+            (scara, 1000),
+            (chain(3), 1000),
+            (chain(3), 100),
+        ] {
+            let name = robot.name.clone();
+            let opts = |expanded_ne| CheckOptions {
+                proof: ProofOptions {
+                    budget,
+                    ..ProofOptions::default()
+                },
+                expanded_ne,
+                ..CheckOptions::default()
+            };
+            let reused = Derivation::new(robot.clone()).expect("valid");
+            let claims = check_with(&reused, &opts(true));
+            let exact = claims.iter().all(|c| c.proof == ClaimProof::Exact);
+            assert_eq!(exact, budget == 1000, "{name} within {budget}");
+            assert!(claims.iter().all(|c| c.holds), "{name}: {claims:?}");
+            if exact {
+                assert!(reused.compact_if_derived().is_none(), "{name}");
+            }
+            let compact = Derivation::new(robot).expect("valid");
+            assert_eq!(claims, check_with(&compact, &opts(false)), "{name}");
+        }
     }
 
     /// The exact comparison is term by term: the compact Newton–Euler `τ` expanded agrees with

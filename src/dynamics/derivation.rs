@@ -237,6 +237,12 @@ impl Derivation {
             .get_or_init(|| CompactDynamics::derive(&self.robot, &self.joints))
     }
 
+    /// The compact dynamics if they were derived already (for tests of what a path derives).
+    #[cfg(test)]
+    pub(crate) fn compact_if_derived(&self) -> Option<&CompactDynamics> {
+        self.compact.get()
+    }
+
     /// The structural facts of this robot (known before deriving, plus `D(q)` constant, decided on the
     /// compact `D` by composite rigid bodies: no entry depends on a position, so the expanded one
     /// does not either, and no expanded derivation is needed to say so).

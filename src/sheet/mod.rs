@@ -22,7 +22,7 @@ mod newton_euler_compact;
 mod scene;
 
 use crate::algebra::{Expr, Symbol};
-use crate::dynamics::check::{check, ClaimProof};
+use crate::dynamics::check::{check_with, CheckOptions, ClaimProof};
 use crate::dynamics::{Derivation, Frame};
 use crate::print::{self, Style};
 use layout::Layout;
@@ -147,8 +147,9 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             t.work();
             t
         });
+        let expanded_ne = tidied.is_some() && frames.contains(&Frame::Body);
         return document(der, opts, compact, tidied.as_ref(), || {
-            full.then(|| agreement(der))
+            full.then(|| agreement(der, expanded_ne))
         });
     }
     // Decided once, by whichever thread asks first (an arm of up to four joints reads its
@@ -173,7 +174,10 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
                 }
             });
         }
-        let proofs = full.then(|| scope.spawn(|| agreement(der)));
+        // The proofs take the body-frame Newton–Euler τ the sheet derives, expanded, when it does.
+        let proofs = full.then(|| {
+            scope.spawn(move || agreement(der, !is_compact() && frames.contains(&Frame::Body)))
+        });
         let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
         let compact = is_compact();
         let tidied = if frames.is_empty() {
@@ -345,9 +349,17 @@ const PREAMBLE: &str = "\\documentclass[10pt]{article}
 \\begin{document}
 ";
 
-/// The last section: both formulations agree, each claim with the proof it got.
-fn agreement(der: &Derivation) -> String {
-    let claims = check(der);
+/// The last section: both formulations agree, each claim with the proof it got (`expanded_ne`: the
+/// sheet derives the expanded Newton–Euler recursion in body frames, whose `τ` the proof then
+/// takes; [`CheckOptions::expanded_ne`]).
+fn agreement(der: &Derivation, expanded_ne: bool) -> String {
+    let claims = check_with(
+        der,
+        &CheckOptions {
+            expanded_ne,
+            ..CheckOptions::default()
+        },
+    );
     let mut out = String::from("\\section*{Both formulations agree}\n");
     if claims.iter().all(|c| c.proof == ClaimProof::Exact) {
         out.push_str(
