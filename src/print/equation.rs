@@ -11,7 +11,7 @@
 
 #[cfg(doc)]
 use super::poly::join_signed;
-use super::poly::{Ranks, Renderer};
+use super::poly::{Ranks, Renderer, TermTexts};
 use super::Style;
 use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::fast_hash::FxHashMap;
@@ -185,6 +185,21 @@ struct Split<'p> {
     key: (u32, u32),
     rest: (u32, u32),
     coeff: &'p Rational,
+    /// The part the term is of.
+    part: u32,
+}
+
+/// A part's coefficient as printed before, lent to an equation's printer ([`side_text_of_parts_lent`]):
+/// `poly` (the part's coefficient, or the coefficient it is a multiple of, term for term) and its
+/// text ([`super::poly::Renderer::sum_with_terms`], by a renderer of the same ranks' order and
+/// style). A group of the part's terms without a parameter is then written in the order its text
+/// has, each term copied (or its number written and the rest copied, for another coefficient).
+#[derive(Clone, Copy, Debug)]
+pub struct Lent<'a> {
+    /// The coefficient printed.
+    pub poly: &'a Poly,
+    /// Its text.
+    pub texts: &'a TermTexts,
 }
 
 /// The display terms of an equation side, or `None` if an atom of `p` is outside the plain class
@@ -222,13 +237,24 @@ pub(crate) fn parts_ranks(parts: &[(&Poly, &[(AtomId, i32)])]) -> Option<(Ranks,
 /// `p_i` holds a `q̇` or `q̈`, no two products share a monomial, and the side has exactly their
 /// terms; `None` when one does (the caller then multiplies out), or as for [`pieces`].
 pub fn side_text_of_parts(parts: &[(&Poly, &[(AtomId, i32)])], style: Style) -> Option<String> {
+    side_text_of_parts_lent(parts, &[], style)
+}
+
+/// [`side_text_of_parts`] with some parts' coefficients printed before (`lent[i]` for part `i`;
+/// [`Lent`]), outside LaTeX: the same text.
+pub fn side_text_of_parts_lent(
+    parts: &[(&Poly, &[(AtomId, i32)])],
+    lent: &[Option<Lent>],
+    style: Style,
+) -> Option<String> {
     let (ranks, terms) = parts_ranks(parts)?;
     let mut sink = Write {
         out: String::with_capacity(48 * terms),
         frames: vec![Frame::default()],
         style,
     };
-    if !lay_out_parts(parts, &ranks, style, &mut sink) {
+    let lent = if style == Style::Latex { &[] } else { lent };
+    if !lay_out_parts(parts, lent, &ranks, style, &mut sink) {
         return None;
     }
     if sink.frames[0].count == 0 {
@@ -243,7 +269,7 @@ pub fn side_text_of_parts(parts: &[(&Poly, &[(AtomId, i32)])], style: Style) -> 
 /// rates (stage 1), else its trig factors (stage 2, possibly none). Terms of one key share a display
 /// term, keys in order within a stage ([`shown`] lays out each).
 pub(crate) fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sink) {
-    let whole = lay_out_parts(&[(p, &[])], ranks, style, sink);
+    let whole = lay_out_parts(&[(p, &[])], &[], ranks, style, sink);
     debug_assert!(whole, "one part, times nothing");
 }
 
@@ -252,6 +278,7 @@ pub(crate) fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sin
 /// multiplied by something, holds a `q̇` or `q̈`).
 pub(crate) fn lay_out_parts(
     parts: &[(&Poly, &[(AtomId, i32)])],
+    lent: &[Option<Lent>],
     ranks: &Ranks,
     style: Style,
     sink: &mut impl Sink,
@@ -292,7 +319,8 @@ pub(crate) fn lay_out_parts(
         }
     };
     let mut scratch: Factors = Vec::new();
-    for &(p, by_atoms) in parts {
+    for (part, &(p, by_atoms)) in parts.iter().enumerate() {
+        let part = part as u32;
         let mut by: Factors = Vec::with_capacity(by_atoms.len());
         push_ranked(&mut by, by_atoms);
         by.sort_unstable_by_key(|&(r, _)| r);
@@ -317,6 +345,7 @@ pub(crate) fn lay_out_parts(
                     key,
                     rest: (start as u32, buf.len() as u32),
                     coeff: c,
+                    part,
                 });
             }
             continue;
@@ -347,6 +376,7 @@ pub(crate) fn lay_out_parts(
                 key: (start, mid),
                 rest: (mid, buf.len() as u32),
                 coeff: c,
+                part,
             });
         }
     }
@@ -381,14 +411,30 @@ pub(crate) fn lay_out_parts(
             .then_with(|| super::poly::cmp_factor_lists(a, b))
     });
     for key in keys.iter().flatten() {
-        let coeff: Vec<Coefficient> = groups[key]
+        let members = &groups[key];
+        let coeff: Vec<Coefficient> = members
             .iter()
             .map(|&i| {
                 let t = &splits[i as usize];
                 (range(t.rest), t.coeff)
             })
             .collect();
-        shown(sink, &mut r, &roles, coeff, key);
+        // A group that is one part whose coefficient was printed before, term for term.
+        let part = splits[members[0] as usize].part as usize;
+        let lent = lent.get(part).copied().flatten().filter(|l| {
+            let p = parts[part].0;
+            members.len() == p.len()
+                && members
+                    .iter()
+                    .all(|&i| splits[i as usize].part as usize == part)
+                && l.poly.len() == p.len()
+                && l.texts.ranges.len() == p.len()
+                && p.terms()
+                    .iter()
+                    .zip(l.poly.terms())
+                    .all(|(a, b)| a.0 == b.0)
+        });
+        shown(sink, &mut r, &roles, coeff, key, lent);
     }
     true
 }
@@ -409,14 +455,18 @@ fn shown(
     roles: &[Role],
     mut coeff: Vec<Coefficient>,
     key: &[(u32, i32)],
+    lent: Option<Lent>,
 ) {
+    let len = coeff.len();
     coeff.retain(|(_, c)| !c.is_zero());
     if coeff.is_empty() {
         return;
     }
+    // Lent texts are by term: none is dropped.
+    let lent = lent.filter(|_| coeff.len() == len);
     if key.is_empty() {
         // The terms without key atoms at the last stage: grouped, without parentheses.
-        return grouped(sink, r, roles, &coeff);
+        return grouped(sink, r, roles, &coeff, lent);
     }
     if let [(f, c)] = coeff.as_slice() {
         let mut all: Factors = f.to_vec();
@@ -425,7 +475,7 @@ fn shown(
         return sink.product(r, c, &all);
     }
     sink.open(r, &[]);
-    grouped(sink, r, roles, &coeff);
+    grouped(sink, r, roles, &coeff, lent);
     sink.close(r, key);
 }
 
@@ -456,11 +506,20 @@ type Led = (Option<(u32, i32)>, usize, usize, usize);
 /// Terms grouped by their leading parameter (the first parameter factor in canonical order, with
 /// its power): `m2 (l1^2 + lc2^2) + I2`. Groups in the order of their leads, the terms without a
 /// parameter last; within a group, the terms in the canonical order of what is left of them.
-fn grouped(sink: &mut impl Sink, r: &mut Renderer, roles: &[Role], terms: &[Coefficient]) {
+fn grouped(
+    sink: &mut impl Sink,
+    r: &mut Renderer,
+    roles: &[Role],
+    terms: &[Coefficient],
+    lent: Option<Lent>,
+) {
     let led = |f: &[(u32, i32)]| f.iter().any(|&(r, _)| roles[r as usize] == Role::Param);
     if !terms.iter().any(|(f, _)| led(f)) {
         // No parameter: one run, in the canonical order of the terms' own factors.
-        return in_order(sink, r, terms);
+        return match lent {
+            Some(l) => in_lent_order(sink, r, terms, l),
+            None => in_order(sink, r, terms),
+        };
     }
     // Sorted by lead, then by the rest.
     let mut rest: Factors = Vec::with_capacity(terms.iter().map(|(f, _)| f.len()).sum());
@@ -539,6 +598,24 @@ fn in_order(sink: &mut impl Sink, r: &mut Renderer, terms: &[Coefficient]) {
     }
 }
 
+/// [`in_order`] of the terms of a lent coefficient (`terms[t]` its term `t`): in the order its text
+/// has them, but a constant term first (its text, a canonical sum, puts it last; as a factor list
+/// it is the shortest), each copied when its number is the lent one's, else its number written and
+/// its factors copied.
+fn in_lent_order(sink: &mut impl Sink, r: &mut Renderer, terms: &[Coefficient], lent: Lent) {
+    let order = &lent.texts.order;
+    let (constant, rest) = match order.split_last() {
+        Some((&t, rest)) if terms[t as usize].0.is_empty() => (Some(t), rest),
+        _ => (None, &order[..]),
+    };
+    for &t in constant.iter().chain(rest) {
+        let t = t as usize;
+        let (f, c) = terms[t];
+        let whole = (*c == lent.poly.terms()[t].1).then(|| lent.texts.term(t));
+        sink.copied(r, c, f, whole, lent.texts.tail(t));
+    }
+}
+
 /// Where the display terms of a side go, in order: products, and groups `before (…) after` opened
 /// and closed around their terms (`before`, `after`: factors, possibly none).
 pub(crate) trait Sink {
@@ -548,6 +625,20 @@ pub(crate) trait Sink {
     fn open(&mut self, r: &mut Renderer, before: &[(u32, i32)]);
     /// Closes the innermost group, with its factors `after`.
     fn close(&mut self, r: &mut Renderer, after: &[(u32, i32)]);
+    /// [`Sink::product`] of a term printed before: its magnitude `whole`, when it is the same
+    /// product, else its factors after the number `tail` (possibly empty); by default printed
+    /// again.
+    fn copied(
+        &mut self,
+        r: &mut Renderer,
+        c: &Rational,
+        factors: &[(u32, i32)],
+        whole: Option<&str>,
+        tail: &str,
+    ) {
+        let _ = (whole, tail);
+        self.product(r, c, factors);
+    }
 }
 
 /// The product of `factors` alone (`m_{2}`), or nothing for none.
@@ -631,6 +722,26 @@ impl Sink for Write {
     fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) {
         self.sign(c.is_negative());
         let space = r.measured_product(&mut self.out, c, factors).spaced;
+        self.spaced(space);
+    }
+
+    fn copied(
+        &mut self,
+        r: &mut Renderer,
+        c: &Rational,
+        factors: &[(u32, i32)],
+        whole: Option<&str>,
+        tail: &str,
+    ) {
+        self.sign(c.is_negative());
+        let space = match whole {
+            Some(text) => {
+                self.out.push_str(text);
+                text.contains(' ')
+            }
+            None if !tail.is_empty() => r.product_with_tail(&mut self.out, c, factors, tail),
+            None => r.measured_product(&mut self.out, c, factors).spaced,
+        };
         self.spaced(space);
     }
 
@@ -739,6 +850,37 @@ mod tests {
                     "{s} in {style:?}"
                 );
             }
+        }
+    }
+
+    /// A side printed with its parts' coefficients lent (their texts printed before) is the side
+    /// printed afresh: a coefficient the same as the lent one (copied term by term) and twice it
+    /// (each number written again, the rest copied), with a constant term, a surd that joins the
+    /// number, and a term that is only a surd; in text and ASCII (LaTeX takes no loan).
+    #[test]
+    fn a_side_from_lent_texts_is_the_side_printed_afresh() {
+        let c = p(
+            "3/7*sin(q1)*cos(q2) - 2*sin(q2) + 5/3*sqrt(2)*cos(q1) + 2 - cos(q2)^2*sin(q1) \
+                   + 1/2*sqrt(3) - sin(q1)*sin(q2)*cos(q1)",
+        );
+        let twice = c.scale(&Rational::int(2));
+        let g = p("g*cos(q1) + 3*g*sin(q2)");
+        let atoms = |s: &str| p(s).terms()[0].0.factors().to_vec();
+        let (qdd1, qd12) = (atoms("qdd1"), atoms("qd1*qd2"));
+        let parts: [(&Poly, &[(AtomId, i32)]); 3] = [(&c, &qdd1), (&twice, &qd12), (&g, &[])];
+        let ranks = Ranks::of([&c]).expect("plain atoms");
+        for style in [Style::Text, Style::Ascii] {
+            let texts = Renderer::new(&ranks, style).sum_with_terms(&c);
+            let lent = Some(Lent {
+                poly: &c,
+                texts: &texts,
+            });
+            let afresh = side_text_of_parts(&parts, style).expect("plain atoms");
+            assert_eq!(
+                side_text_of_parts_lent(&parts, &[lent, lent, None], style),
+                Some(afresh),
+                "{style:?}"
+            );
         }
     }
 

@@ -200,21 +200,32 @@ fn sort_terms(terms: &mut [Term], buf: &[(u32, i32)]) {
     terms.copy_from_slice(&sorted);
 }
 
-/// A sum printed by [`Renderer::sum_with_terms`]: its text, and where the magnitude of each of
-/// its polynomial's terms lies in it (`ranges[t]`, by the term's index), for
-/// [`Renderer::sum_of_multiples`] to copy.
+/// A sum printed by [`Renderer::sum_with_terms`]: its text, where the magnitude of each of its
+/// polynomial's terms lies in it and where that magnitude's factors after its number begin, and
+/// the order the terms were printed in: for [`Renderer::sum_of_multiples`] and the equations'
+/// printers ([`super::equation::Lent`]) to copy.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TermTexts {
     /// The text of the sum.
     pub text: String,
-    /// The byte range of each term's magnitude in `text`.
-    pub ranges: Vec<(u32, u32)>,
+    /// For each term (by its index): the byte range of its magnitude in `text`, `(start, tail,
+    /// end)`, its factors after the number (and the surds and powers of π that join it) in
+    /// `tail..end` (empty if it has none).
+    pub ranges: Vec<(u32, u32, u32)>,
+    /// The terms' indices in the order they were printed.
+    pub order: Vec<u32>,
 }
 
 impl TermTexts {
     /// The magnitude of term `t`.
-    fn term(&self, t: usize) -> &str {
-        let (a, b) = self.ranges[t];
+    pub fn term(&self, t: usize) -> &str {
+        let (a, _, b) = self.ranges[t];
+        &self.text[a as usize..b as usize]
+    }
+
+    /// The factors of term `t` after its number, as its magnitude writes them (may be empty).
+    pub fn tail(&self, t: usize) -> &str {
+        let (_, a, b) = self.ranges[t];
         &self.text[a as usize..b as usize]
     }
 }
@@ -235,6 +246,9 @@ pub struct Renderer<'a> {
     sparse: Vec<(FactorKey, Rendered)>,
     /// The factors after the number of the last product written, and their text.
     last: Tail,
+    /// The length of the factors' text at the end of the last product written (0: none, or not
+    /// written by [`Renderer::measured_product`]'s own route).
+    tail_len: usize,
 }
 
 /// The factors after a product's number (`sin(q2)*cos(q2)*qd1`), as [`Renderer::tail`] last wrote
@@ -293,6 +307,7 @@ impl<'a> Renderer<'a> {
             dense: vec![Rendered::default(); ranks.atoms.len() * 2 * DENSE_POWERS as usize],
             sparse: Vec::new(),
             last: Tail::default(),
+            tail_len: 0,
         }
     }
 
@@ -423,6 +438,32 @@ impl<'a> Renderer<'a> {
         c: &Rational,
         factors: &[(u32, i32)],
     ) -> Measure {
+        self.product_with(out, c, factors, None)
+    }
+
+    /// [`Renderer::product_into`] of a product whose factors after its number were printed before
+    /// as `tail` ([`TermTexts::tail`], by a renderer of the same ranks and style; not empty):
+    /// the number written, `tail` copied. Returns whether the text has a space.
+    pub fn product_with_tail(
+        &mut self,
+        out: &mut String,
+        c: &Rational,
+        factors: &[(u32, i32)],
+        tail: &str,
+    ) -> bool {
+        self.product_with(out, c, factors, Some(tail)).spaced
+    }
+
+    /// [`Renderer::measured_product`], the factors after the number copied from `lent` when given
+    /// (then measured only for their space).
+    fn product_with(
+        &mut self,
+        out: &mut String,
+        c: &Rational,
+        factors: &[(u32, i32)],
+        lent: Option<&str>,
+    ) -> Measure {
+        self.tail_len = 0;
         if factors.iter().any(|&(_, e)| e < 0) {
             let list: Vec<(Expr, i64)> = factors
                 .iter()
@@ -521,8 +562,14 @@ impl<'a> Renderer<'a> {
             if out.len() > start {
                 separate(out, &mut m);
             }
+            if let Some(text) = lent {
+                out.push_str(text);
+                m.spaced |= text.contains(' ');
+                return m;
+            }
             let tail = self.tail(rest, (sep, sep_width));
             out.push_str(&self.last.text);
+            self.tail_len = self.last.text.len();
             m.width += tail.width;
             m.spaced |= tail.spaced;
         }
@@ -542,9 +589,13 @@ impl<'a> Renderer<'a> {
     /// [`Renderer::sum`] (not nested), with where each term's text lies in it.
     pub fn sum_with_terms(&mut self, p: &Poly) -> TermTexts {
         let (buf, terms) = self.ranked_terms(p);
-        let mut ranges = vec![(0, 0); p.len()];
-        let text = self.sorted_sum(&buf, terms, false, Some(&mut ranges));
-        TermTexts { text, ranges }
+        let mut texts = TermTexts {
+            text: String::new(),
+            ranges: vec![(0, 0, 0); p.len()],
+            order: Vec::with_capacity(p.len()),
+        };
+        texts.text = self.sorted_sum(&buf, terms, false, Some(&mut texts));
+        texts
     }
 
     /// `p`'s terms, each factor list by rank in one buffer and the terms as ranges of it (the
@@ -627,20 +678,21 @@ impl<'a> Renderer<'a> {
     }
 
     /// The sum of `terms` (ranges of `buf`, each a factor list by rank, and a coefficient, the
-    /// constant term, if any, last) in the canonical order, printed; `ranges`, if asked for (not
-    /// nested), takes where each term's magnitude lies in the text, by the term's index.
+    /// constant term, if any, last) in the canonical order, printed; `record`, if asked for (not
+    /// nested), takes where each term's magnitude lies in the text and the order of the terms
+    /// (its text is left to the caller).
     fn sorted_sum(
         &mut self,
         buf: &[(u32, i32)],
         mut terms: Vec<Term>,
         nested: bool,
-        mut ranges: Option<&mut Vec<(u32, u32)>>,
+        mut record: Option<&mut TermTexts>,
     ) -> String {
         let constant = terms.pop_if(|t| t.start == t.end);
         sort_terms(&mut terms, buf);
         terms.extend(constant);
         if nested {
-            debug_assert!(ranges.is_none(), "a nested sum's terms are not recorded");
+            debug_assert!(record.is_none(), "a nested sum's terms are not recorded");
             let signs: Vec<bool> = terms.iter().map(|t| t.c.is_negative()).collect();
             let bodies: Vec<String> = terms
                 .iter()
@@ -666,8 +718,10 @@ impl<'a> Renderer<'a> {
             }
             let start = out.len() as u32;
             self.write_term(&mut out, t, buf);
-            if let Some(ranges) = ranges.as_deref_mut() {
-                ranges[t.index as usize] = (start, out.len() as u32);
+            if let Some(record) = record.as_deref_mut() {
+                let end = out.len() as u32;
+                record.ranges[t.index as usize] = (start, end - self.tail_len as u32, end);
+                record.order.push(t.index);
             }
         }
         out
@@ -678,6 +732,7 @@ impl<'a> Renderer<'a> {
         let factors = &buf[t.start..t.end];
         match (t.lent, factors.last()) {
             (Some(text), Some(&(x, e))) => {
+                self.tail_len = 0;
                 out.push_str(text);
                 out.push(if self.style == Style::Ascii { '*' } else { ' ' });
                 self.push_factor(out, &mut Measure::default(), x, e, false);

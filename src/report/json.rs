@@ -21,6 +21,7 @@ use crate::algebra::{Poly, Symbol};
 use crate::dynamics::lagrange::{nonzero_christoffel, Christoffel};
 use crate::dynamics::Derivation;
 use crate::parallel::{self, WORTH_SHARING};
+use crate::print::equation::Lent;
 use crate::print::poly::{poly_to_string, Ranks, Renderer, TermTexts};
 use crate::print::Style;
 use serde_json::Value;
@@ -32,9 +33,10 @@ enum Job<'a> {
     Lhs(Lhs<'a>),
     /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the stage's shared renderer.
     Large(&'a Poly),
-    /// A Christoffel symbol past [`JSON_TIDY_BUDGET`] terms: as [`Job::Large`], with where each of
-    /// its terms lies in the text, for the entries of `C` to copy.
-    Symbol(&'a Poly),
+    /// An entry of `D` or a Christoffel symbol past [`JSON_TIDY_BUDGET`] terms: as [`Job::Large`],
+    /// with where each of its terms lies in the text, for the equations and the entries of `C` to
+    /// copy.
+    Recorded(&'a Poly),
     /// A smaller quantity, tidied ([`quantity_string`]).
     Small(&'a Poly),
     /// An entry of `C(q, q̇)`, `c_kj = Σ_i c_ijk q̇_i`, printed from the Christoffel symbols (the
@@ -49,9 +51,22 @@ impl Job<'_> {
     fn len(&self) -> usize {
         match self {
             Job::Lhs(l) => l.len(),
-            Job::Large(p) | Job::Symbol(p) | Job::Small(p) => p.len(),
+            Job::Large(p) | Job::Recorded(p) | Job::Small(p) => p.len(),
             Job::Rates(parts) => parts.iter().map(|(p, _, _)| p.len()).sum(),
         }
+    }
+}
+
+/// A quantity printed from its normal form lends its text (a tidied one has none recorded).
+fn lend<'a>(poly: &'a Poly, texts: &'a TermTexts) -> Option<Lent<'a>> {
+    (!texts.ranges.is_empty()).then_some(Lent { poly, texts })
+}
+
+/// A quantity's job as [`quantity`] makes it, a large one [`Job::Recorded`].
+fn recorded(p: &Poly) -> Job<'_> {
+    match quantity(p) {
+        Job::Large(p) => Job::Recorded(p),
+        small => small,
     }
 }
 
@@ -64,12 +79,12 @@ fn quantity(p: &Poly) -> Job<'_> {
     }
 }
 
-/// The ranking of the atoms of the large quantities ([`Job::Large`]) among `jobs`, which their
+/// The ranking of the atoms of the large quantities ([`Job::Large`], [`Job::Recorded`]) among `jobs`, which their
 /// renderer shares: the text does not depend on which atoms are ranked with them. (The Christoffel
 /// symbols and `C` take one ranking of their own, built in [`print_all`].)
 fn ranks(jobs: &[Job]) -> Option<Ranks> {
     let large = jobs.iter().filter_map(|j| match j {
-        Job::Large(p) => Some(*p),
+        Job::Large(p) | Job::Recorded(p) => Some(*p),
         _ => None,
     });
     Ranks::of_lists(large.flat_map(|p| p.terms().iter().map(|(m, _)| m.factors())))
@@ -84,7 +99,7 @@ fn expanded(parts: &[(&Poly, AtomId, usize)]) -> Poly {
     Poly::sum(&terms)
 }
 
-/// A job printed in ASCII, with where its terms lie for a [`Job::Symbol`] (no ranges otherwise).
+/// A job printed in ASCII, with where its terms lie for a [`Job::Recorded`] (no ranges otherwise).
 /// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can.
 fn print(ranks: &Option<Ranks>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
     let text = match job {
@@ -93,7 +108,7 @@ fn print(ranks: &Option<Ranks>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
             Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
             None => poly_to_string(p, Style::Ascii),
         },
-        Job::Symbol(p) => match ranks {
+        Job::Recorded(p) => match ranks {
             Some(r) => return Renderer::new(r, Style::Ascii).sum_with_terms(p),
             None => poly_to_string(p, Style::Ascii),
         },
@@ -113,6 +128,7 @@ fn print(ranks: &Option<Ranks>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
     TermTexts {
         text,
         ranges: Vec::new(),
+        order: Vec::new(),
     }
 }
 
@@ -120,7 +136,7 @@ fn print(ranks: &Option<Ranks>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
 fn weight(job: &Job) -> usize {
     match job {
         Job::Lhs(l) => l.work(),
-        Job::Large(_) | Job::Symbol(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => {
+        Job::Large(_) | Job::Recorded(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => {
             64 * job.len()
         }
         // Tidying costs far more per term than printing.
@@ -191,7 +207,7 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
     // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
     let d_jobs: Vec<Job> = upper(n)
         .into_iter()
-        .map(|(k, j)| quantity(&d[k][j]))
+        .map(|(k, j)| recorded(&d[k][j]))
         .collect();
     // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
     let mut printed = vec![vec![vec![usize::MAX; n]; n]; n];
@@ -220,21 +236,11 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         .map(quantity)
         .collect();
     let (d_ranks, g_ranks) = (ranks(&d_jobs), ranks(&g_jobs));
-    let symbol_jobs = symbols
-        .iter()
-        .map(|&p| match quantity(p) {
-            Job::Large(p) => Job::Symbol(p),
-            small => small,
-        })
-        .collect();
-    let stages: [(&Option<Ranks>, Vec<Job>); 4] = [
+    let symbol_jobs = symbols.iter().map(|&p| recorded(p)).collect();
+    let stages: [(&Option<Ranks>, Vec<Job>); 3] = [
         (&d_ranks, d_jobs),
         (&shared, symbol_jobs),
         (&g_ranks, g_jobs),
-        (
-            &None,
-            left_sides(der, method).into_iter().map(Job::Lhs).collect(),
-        ),
     ];
     let flat: Vec<(usize, &Job)> = stages
         .iter()
@@ -254,17 +260,51 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
             .take(stages[s].1.len())
             .collect::<Vec<TermTexts>>()
     };
-    let strings = |t: Vec<TermTexts>| t.into_iter().map(|t| t.text).collect::<Vec<String>>();
-    let (d_upper, symbols) = (strings(next(0)), next(1));
-    let (potential, lhs) = (strings(next(2)), strings(next(3)));
-    let c_jobs = coriolis_jobs(christoffel, &rates, &printed);
-    let coriolis = parallel::map(&c_jobs, weight, WORTH_SHARING, |j| {
-        print(&shared, j, &symbols).text
-    });
+    let (d_texts, symbol_texts) = (next(0), next(1));
+    let potential: Vec<String> = next(2).into_iter().map(|t| t.text).collect();
+    // Then the equations and C, which copy what they can of D's and the symbols' texts.
+    let mut d_index = vec![vec![usize::MAX; n]; n];
+    for (i, (k, j)) in upper(n).into_iter().enumerate() {
+        d_index[k][j] = i;
+    }
+    // The coefficients of τ_k's parts, in `side_parts`' order: d_kj (the non-zero ones), c_ijk
+    // (i ≤ j, the non-zero ones), g_k (not lent). Each is checked against its part, term by term.
+    let lent_of = |k: usize| -> Vec<Option<Lent>> {
+        let mut lent = Vec::new();
+        for j in (0..n).filter(|&j| !d[k][j].is_zero()) {
+            let (a, b) = (k.min(j), k.max(j));
+            lent.push(lend(&d[a][b], &d_texts[d_index[a][b]]));
+        }
+        for i in 0..n {
+            for j in (i..n).filter(|&j| !christoffel[i][j][k].is_zero()) {
+                let s = printed[i][j][k];
+                lent.push(lend(symbols[s], &symbol_texts[s]));
+            }
+        }
+        lent
+    };
+    let sides = left_sides(der, method);
+    let late: Vec<Job> = sides
+        .iter()
+        .map(|&l| Job::Lhs(l))
+        .chain(coriolis_jobs(christoffel, &rates, &printed))
+        .collect();
+    let items: Vec<usize> = (0..late.len()).collect();
+    let mut late_texts = parallel::map(
+        &items,
+        |&i| weight(&late[i]),
+        WORTH_SHARING,
+        |&i| match &late[i] {
+            Job::Lhs(l) => l.string_lent(Style::Ascii, &lent_of(i)),
+            job => print(&shared, job, &symbol_texts).text,
+        },
+    )
+    .into_iter();
+    let lhs: Vec<String> = late_texts.by_ref().take(sides.len()).collect();
     Printed {
-        d_upper,
-        symbols: strings(symbols),
-        coriolis,
+        d_upper: d_texts.into_iter().map(|t| t.text).collect(),
+        symbols: symbol_texts.into_iter().map(|t| t.text).collect(),
+        coriolis: late_texts.collect(),
         potential,
         lhs,
     }

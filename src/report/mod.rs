@@ -64,8 +64,19 @@ pub fn lhs_string(tau_k: &Poly, style: Style) -> String {
 /// [`lhs_string`] of `τ_k` from its parts ([`side_parts`](crate::dynamics::lagrange::side_parts)),
 /// never multiplied out when it is printed from the normal form: the same text.
 pub fn lhs_string_of_parts(parts: &SideParts, style: Style) -> String {
+    lhs_string_of_parts_lent(parts, &[], style)
+}
+
+/// [`lhs_string_of_parts`] with the coefficients of some parts printed before (`lent[i]` for
+/// part `i`; [`print::equation::Lent`]), copied where they can be: the same text.
+pub(crate) fn lhs_string_of_parts_lent(
+    parts: &SideParts,
+    lent: &[Option<print::equation::Lent>],
+    style: Style,
+) -> String {
     if parts.iter().map(|(p, _)| p.len()).sum::<usize>() > DISPLAY_BUDGET {
-        if let Some(text) = print::equation::side_text_of_parts(&part_refs(parts), style) {
+        if let Some(text) = print::equation::side_text_of_parts_lent(&part_refs(parts), lent, style)
+        {
             return text;
         }
     }

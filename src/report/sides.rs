@@ -6,11 +6,13 @@
 //! its instructions). The text is the same either way (tested).
 
 use super::{
-    lhs_side, lhs_string, lhs_string_of_parts, part_refs, tau, work_of_side, Method, DISPLAY_BUDGET,
+    lhs_side, lhs_string, lhs_string_of_parts_lent, part_refs, tau, work_of_side, Method,
+    DISPLAY_BUDGET,
 };
 use crate::algebra::Poly;
 use crate::dynamics::lagrange::{multiplied_out, side_parts, Christoffel, SideParts};
 use crate::dynamics::Derivation;
+use crate::print::equation::Lent;
 use crate::print::layout::PreparedEquation;
 use crate::print::Style;
 
@@ -87,9 +89,15 @@ impl Lhs<'_> {
 
     /// The side printed in `style`, as [`lhs_string`] prints `τ_k`.
     pub(crate) fn string(&self, style: Style) -> String {
+        self.string_lent(style, &[])
+    }
+
+    /// [`Lhs::string`] with the coefficients of `τ_k`'s parts ([`side_parts`]' order) that were
+    /// printed before lent to it ([`Lent`]): the same text.
+    pub(crate) fn string_lent(&self, style: Style, lent: &[Option<Lent>]) -> String {
         match self {
             Lhs::Derived(t) => lhs_string(t, style),
-            Lhs::Parts(k, p) => lhs_string_of_parts(&Self::parts(*k, p), style),
+            Lhs::Parts(k, p) => lhs_string_of_parts_lent(&Self::parts(*k, p), lent, style),
         }
     }
 

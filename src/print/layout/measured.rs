@@ -208,7 +208,7 @@ impl PreparedEquation {
             room: room_before(&format!(" = {rhs}")),
             mixed: false,
         };
-        if !lay_out_parts(parts, &ranks, Style::Latex, &mut sink) {
+        if !lay_out_parts(parts, &[], &ranks, Style::Latex, &mut sink) {
             return None;
         }
         let side = sink.frames.pop().expect("the side's frame");
