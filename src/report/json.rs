@@ -100,10 +100,16 @@ fn expanded(parts: &[(&Poly, AtomId, usize)]) -> Poly {
 }
 
 /// A job printed in ASCII, with where its terms lie for a [`Job::Recorded`] (no ranges otherwise).
-/// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can.
-fn print(ranks: &Option<Ranks>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
+/// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can; an
+/// equation from `lent`, its parts' coefficients as printed.
+fn print(
+    ranks: &Option<Ranks>,
+    job: &Job,
+    symbols: &[TermTexts],
+    lent: &[Option<Lent>],
+) -> TermTexts {
     let text = match job {
-        Job::Lhs(l) => l.string(Style::Ascii),
+        Job::Lhs(l) => l.string_lent(Style::Ascii, lent),
         Job::Large(p) => match ranks {
             Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
             None => poly_to_string(p, Style::Ascii),
@@ -190,9 +196,10 @@ fn coriolis_jobs<'a>(
 }
 
 /// Every expression of the document: derived first (each stage of the derivation on several threads
-/// for a large robot), then printed on several threads ([`parallel::map`], heaviest first), `C`
-/// last: it is printed from the Christoffel symbols, never expanded, copying their printed terms
-/// where it can. The text is the same on any number of threads.
+/// for a large robot), then printed on several threads ([`parallel::map`], heaviest first) in two
+/// stages: `D`, the Christoffel symbols and `g`, each large one with where its terms lie; then the
+/// equations and `C`, which copy those terms where they can (`C` is printed from the Christoffel
+/// symbols, never expanded). The text is the same on any number of threads.
 ///
 /// Printing the stages beside the derivation (a helper thread printing `D` while the Christoffel
 /// symbols are derived, and so on) was measured slower on two cores: the derivation then runs on one
@@ -251,7 +258,7 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         &flat,
         |(_, j)| weight(j),
         WORTH_SHARING,
-        |&(s, j)| print(stages[s].0, j, &[]),
+        |&(s, j)| print(stages[s].0, j, &[], &[]),
     )
     .into_iter();
     let mut next = |s: usize| {
@@ -294,9 +301,13 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         &items,
         |&i| weight(&late[i]),
         WORTH_SHARING,
-        |&i| match &late[i] {
-            Job::Lhs(l) => l.string_lent(Style::Ascii, &lent_of(i)),
-            job => print(&shared, job, &symbol_texts).text,
+        |&i| {
+            let lent = if i < sides.len() {
+                lent_of(i)
+            } else {
+                Vec::new()
+            };
+            print(&shared, &late[i], &symbol_texts, &lent).text
         },
     )
     .into_iter();
