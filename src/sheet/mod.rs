@@ -148,9 +148,13 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             t
         });
         let expanded_ne = tidied.is_some() && frames.contains(&Frame::Body);
-        return document(der, opts, compact, tidied.as_ref(), || {
-            full.then(|| agreement(der, expanded_ne))
-        });
+        return document(
+            der,
+            opts,
+            || compact,
+            || tidied.as_ref(),
+            || full.then(|| agreement(der, expanded_ne)),
+        );
     }
     // Decided once, by whichever thread asks first (an arm of up to four joints reads its
     // expanded D); the vectors likewise, listed by the tidying thread or, should it not have
@@ -166,37 +170,49 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             vectors.get_or_init(|| (!is_compact()).then(|| newton_euler::Tidied::new(der, frames)))
         };
         // The tidying is the longest of the three: it starts first, and the layout takes each
-        // vector as it is tidied.
+        // vector as it is tidied, tidying the next ones itself while one it is due to print is
+        // not ready.
         if !frames.is_empty() {
             scope.spawn(move || {
                 if let Some(t) = listed() {
-                    t.work();
+                    t.work_beside_layout();
                 }
             });
         }
         // The proofs take the body-frame Newton–Euler τ the sheet derives, expanded, when it does.
+        // They need the inertial frame's recursion too, which the tidying thread would otherwise
+        // derive after the body frame's before tidying any vector: this thread derives it
+        // meanwhile. With the layout tidying while it would wait (`Tidied::get`), the SCARA arm's
+        // sheet, measured in 61 interleaved runs: 9.7 → 9.1 ms; the Stanford arm's 19.3 → 18.8 ms.
         let proofs = full.then(|| {
-            scope.spawn(move || agreement(der, !is_compact() && frames.contains(&Frame::Body)))
+            scope.spawn(move || {
+                let expanded = !is_compact();
+                if expanded && frames.contains(&Frame::Inertial) {
+                    der.newton_euler(Frame::Inertial);
+                }
+                agreement(der, expanded && frames.contains(&Frame::Body))
+            })
         });
         let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
-        let compact = is_compact();
-        let tidied = if frames.is_empty() {
-            None
-        } else {
-            listed().as_ref()
+        let tidied = move || {
+            if frames.is_empty() {
+                None
+            } else {
+                listed().as_ref()
+            }
         };
-        document(der, opts, compact, tidied, proofs)
+        document(der, opts, is_compact, tidied, proofs)
     })
 }
 
 /// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` (waited for
 /// vector by vector, as they are laid out) and the agreement section from `proofs` (called once,
 /// when it is due).
-fn document(
+fn document<'t>(
     der: &Derivation,
     opts: &SheetOptions,
-    compact: bool,
-    tidied: Option<&newton_euler::Tidied>,
+    compact: impl Fn() -> bool,
+    tidied: impl Fn() -> Option<&'t newton_euler::Tidied<'t>>,
     proofs: impl FnOnce() -> Option<String>,
 ) -> String {
     let mut lay = Layout::new();
@@ -208,6 +224,9 @@ fn document(
         text(&der.robot().name)
     ));
     out.push_str(NOTATION);
+    // Decided before the scene section, whose facts read the expanded D when it is derived and
+    // derive the compact dynamics otherwise.
+    let compact = compact();
     out.push_str(&scene::section(der, &mut lay, opts.scope == Scope::Brief));
     if opts.lagrange() {
         out.push_str(&match (compact, opts.scope) {
@@ -221,7 +240,7 @@ fn document(
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, &mut lay)
         } else {
-            newton_euler::section(der, frame, &mut lay, tidied, &mut sides)
+            newton_euler::section(der, frame, &mut lay, tidied(), &mut sides)
         });
     }
     match proofs() {

@@ -10,7 +10,7 @@ use crate::dynamics::vec3::Vec3;
 use crate::dynamics::{Convention, Derivation, Frame, JointKind};
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::OnceLock;
 
 fn exprs(v: &Vec3<Poly>) -> Vec<Expr> {
@@ -42,6 +42,8 @@ pub(super) struct Tidied<'d> {
     slots: Vec<OnceLock<Result<PreparedVector, ()>>>,
     /// The next job to take.
     next: AtomicUsize,
+    /// Whether the layout has come to the vectors (and tidies when one is not ready).
+    layout_arrived: AtomicBool,
     /// Each job's place, by frame and name.
     place: HashMap<(Frame, String), usize>,
 }
@@ -88,6 +90,7 @@ impl<'d> Tidied<'d> {
             jobs,
             earlier,
             next: AtomicUsize::new(0),
+            layout_arrived: AtomicBool::new(false),
             place,
         }
     }
@@ -95,44 +98,85 @@ impl<'d> Tidied<'d> {
     /// Tidies the vectors on up to [`crate::parallel::threads`] threads (tidying costs about the
     /// square of a component's terms; below ~100 000 in all, on this thread), until none is left.
     pub(super) fn work(&self) {
-        let weight = self
-            .jobs
+        crate::parallel::share(self.weight(), 100_000, || self.take());
+    }
+
+    /// Tidies the vectors on this thread, on as many more as leave one thread for the layout, and,
+    /// until the layout comes to its first vector, on one more. The layout tidies too whenever a
+    /// vector it is due to print is not ready ([`Tidied::get`]). So the machine's threads compute
+    /// and no more: a thread more than cores left another waiting for a core (the SCARA arm's
+    /// sheet, whose layout comes to the vectors before they are listed: vectors took up to twice
+    /// their time), while the Stanford arm's tidying would be one thread short all through the
+    /// Euler–Lagrange section.
+    pub(super) fn work_beside_layout(&self) {
+        let threads = crate::parallel::threads();
+        let helpers = if self.weight() < crate::parallel::WORTH_SHARING {
+            0
+        } else {
+            threads.saturating_sub(1)
+        };
+        if helpers == 0 || self.layout_arrived.load(Ordering::Relaxed) {
+            self.take();
+            return;
+        }
+        std::thread::scope(|scope| {
+            for h in 0..helpers {
+                // The last helper stands for the layout's thread, until it arrives.
+                let until_layout = h + 1 == helpers;
+                scope.spawn(move || {
+                    while !(until_layout && self.layout_arrived.load(Ordering::Relaxed)) {
+                        if !self.take_one() {
+                            break;
+                        }
+                    }
+                });
+            }
+            self.take();
+        });
+    }
+
+    /// The estimated cost of tidying every vector: about the square of each component's terms.
+    fn weight(&self) -> usize {
+        self.jobs
             .iter()
             .map(|(_, _, v)| v.0.iter().map(|c| c.len() * c.len()).sum::<usize>())
-            .sum();
-        crate::parallel::share(weight, 100_000, || self.take());
+            .sum()
     }
 
     /// Takes vectors in order and tidies each until none is left.
     fn take(&self) {
-        loop {
-            let j = self.next.fetch_add(1, Ordering::Relaxed);
-            let Some((_, name, v)) = self.jobs.get(j) else {
-                return;
-            };
-            let prepared = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                let shown: Vec<Expr> =
-                    v.0.iter()
-                        .zip(&self.earlier[j])
-                        .map(|(c, before)| match before {
-                            None => c.tidy_by(Grouping::Leading),
-                            Some((i, k)) => self.wait(*i).shown()[*k].clone(),
-                        })
-                        .collect();
-                PreparedVector::new(name, shown)
-            }));
-            match prepared {
-                Ok(p) => {
-                    let _ = self.slots[j].set(Ok(p));
+        while self.take_one() {}
+    }
+
+    /// Takes the next vector not taken yet and tidies it; `false` when none is left.
+    fn take_one(&self) -> bool {
+        let j = self.next.fetch_add(1, Ordering::Relaxed);
+        let Some((_, name, v)) = self.jobs.get(j) else {
+            return false;
+        };
+        let prepared = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let shown: Vec<Expr> =
+                v.0.iter()
+                    .zip(&self.earlier[j])
+                    .map(|(c, before)| match before {
+                        None => c.tidy_by(Grouping::Leading),
+                        Some((i, k)) => self.wait(*i).shown()[*k].clone(),
+                    })
+                    .collect();
+            PreparedVector::new(name, shown)
+        }));
+        match prepared {
+            Ok(p) => {
+                let _ = self.slots[j].set(Ok(p));
+                true
+            }
+            Err(panic) => {
+                // Whoever waits for this vector or any not tidied yet (the layout, a later
+                // vector) panics too, rather than waiting for ever.
+                for slot in &self.slots {
+                    let _ = slot.set(Err(()));
                 }
-                Err(panic) => {
-                    // Whoever waits for this vector or any not tidied yet (the layout, a later
-                    // vector) panics too, rather than waiting for ever.
-                    for slot in &self.slots {
-                        let _ = slot.set(Err(()));
-                    }
-                    std::panic::resume_unwind(panic);
-                }
+                std::panic::resume_unwind(panic);
             }
         }
     }
@@ -146,8 +190,13 @@ impl<'d> Tidied<'d> {
     }
 
     /// The display form of `name` in `frame`, once tidied; `None` for a vector not tidied here.
+    /// While it is not ready, this thread tidies the next vectors not taken yet, and waits only
+    /// when every one is taken. Each job waits only for earlier ones (a component met before), so
+    /// the lowest job in progress never waits, and neither does the layout for ever.
     fn get(&self, frame: Frame, name: &str) -> Option<PreparedVector> {
         let &j = self.place.get(&(frame, name.to_string()))?;
+        self.layout_arrived.store(true, Ordering::Relaxed);
+        while self.slots[j].get().is_none() && self.take_one() {}
         Some(self.wait(j).clone())
     }
 }
@@ -416,7 +465,10 @@ mod tests {
 
     /// Tidying each distinct component once (on the workers of `Tidied::work`, a repeated one
     /// waiting for its first) gives every vector what tidying it alone gives, on arms whose vectors
-    /// repeat components (the gravity vectors in the inertial frame).
+    /// repeat components (the gravity vectors in the inertial frame); so does tidying beside the
+    /// layout (`Tidied::work_beside_layout` on a thread of its own while this one asks for each
+    /// vector in order and tidies the next ones whenever it would wait), and the layout tidying
+    /// every vector itself.
     #[test]
     fn components_met_before_are_shown_as_when_tidied_alone() {
         for name in ["rpp", "scara"] {
@@ -425,20 +477,37 @@ mod tests {
             let scene = crate::parse::parse_robot(&text, &Default::default()).unwrap();
             let der = Derivation::new(scene.robot).unwrap();
             let frames = [Frame::Body, Frame::Inertial];
-            let tidied = Tidied::new(&der, &frames);
-            tidied.work();
-            let mut seen = std::collections::HashSet::new();
-            let mut repeated = 0;
-            for frame in frames {
-                for (label, v) in vectors(&der, frame) {
-                    let prepared = tidied.get(frame, &label).expect("every vector is tidied");
-                    for (c, s) in v.0.iter().zip(prepared.shown()) {
-                        assert_eq!(&c.tidy_by(Grouping::Leading), s, "{name} {label}");
-                        repeated += usize::from(c.len() > 1 && !seen.insert(c.clone()));
+            let alone = Tidied::new(&der, &frames);
+            alone.work();
+            let beside = Tidied::new(&der, &frames);
+            let by_layout = Tidied::new(&der, &frames);
+            std::thread::scope(|scope| {
+                scope.spawn(|| beside.work_beside_layout());
+                let mut seen = std::collections::HashSet::new();
+                let mut repeated = 0;
+                for frame in frames {
+                    for (label, v) in vectors(&der, frame) {
+                        let mut shown = Vec::new();
+                        for tidied in [&beside, &by_layout, &alone] {
+                            let prepared =
+                                tidied.get(frame, &label).expect("every vector is tidied");
+                            shown.push(prepared.shown().to_vec());
+                        }
+                        for (k, c) in v.0.iter().enumerate() {
+                            let want = c.tidy_by(Grouping::Leading);
+                            for s in &shown {
+                                assert_eq!(want, s[k], "{name} {label}");
+                            }
+                            repeated += usize::from(c.len() > 1 && !seen.insert(c.clone()));
+                        }
                     }
                 }
-            }
-            assert!(repeated > 0, "{name}: no component repeats");
+                assert!(repeated > 0, "{name}: no component repeats");
+            });
+            assert!(
+                by_layout.slots.iter().all(|s| s.get().is_some()),
+                "{name}: the layout tidied every vector"
+            );
         }
     }
 }
