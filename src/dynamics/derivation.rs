@@ -135,8 +135,14 @@ impl Derivation {
     /// The first Euler–Lagrange stage, `D(q)`. Each stage is kept once derived, and a caller on
     /// another thread may wait for it (and print it) while this one derives the next.
     pub fn mass_matrix(&self) -> &MassMatrix {
-        self.mass
-            .get_or_init(|| MassMatrix::derive(&self.robot, self.kinematics()))
+        self.mass.get_or_init(|| {
+            MassMatrix::new(
+                &self.robot,
+                self.kinematics(),
+                &self.joints,
+                self.compact.get(),
+            )
+        })
     }
 
     /// The second Euler–Lagrange stage, the Christoffel symbols `c[i][j][k] = c_ijk` (0-based).
