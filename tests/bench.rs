@@ -262,5 +262,12 @@ fn bench_says_when_there_is_no_python_and_goes_on() {
     assert!(md.contains("peers skipped: the Python interpreter"), "{md}");
     let bad = symdyn(&["bench", "--out", tmp.to_str().unwrap(), "--timeout", "0"]);
     assert_eq!(bad.status.code(), Some(1));
+    let bad = symdyn(&["bench", "--out", tmp.to_str().unwrap(), "--max-memory", "0"]);
+    assert_eq!(bad.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("--max-memory must be a positive"),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
     let _ = std::fs::remove_dir_all(&tmp);
 }

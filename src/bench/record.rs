@@ -26,7 +26,9 @@ pub enum Status {
     Ok,
     /// Killed at the time limit.
     Timeout,
-    /// Not run: a smaller robot already timed out for this method.
+    /// Killed at the memory limit (`symdyn bench --max-memory`).
+    MemoryLimit,
+    /// Not run: a smaller robot already timed out (or reached the memory limit) for this method.
     Skipped,
     /// Ran, but a claim it checks does not hold.
     Failed,
@@ -40,6 +42,7 @@ impl Status {
         match self {
             Status::Ok => "ok",
             Status::Timeout => "timeout",
+            Status::MemoryLimit => "memory-limit",
             Status::Skipped => "skipped",
             Status::Failed => "failed",
             Status::Error => "error",
@@ -51,6 +54,7 @@ impl Status {
         [
             Status::Ok,
             Status::Timeout,
+            Status::MemoryLimit,
             Status::Skipped,
             Status::Failed,
             Status::Error,

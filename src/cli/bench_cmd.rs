@@ -35,6 +35,8 @@ pub struct BenchArgs {
     pub peers: bool,
     /// Time limit per child process, seconds (default 60, or 10 with `--quick`).
     pub timeout: Option<f64>,
+    /// Memory limit per child process, MiB (default half the machine's memory).
+    pub max_memory: Option<u64>,
     /// Largest chain (default 12, or 6 with `--quick`).
     pub max_joints: Option<usize>,
     /// Example scenes to measure (default all); `none` for none.
@@ -79,10 +81,30 @@ fn vm_hwm_kib(pid: &str) -> Option<u64> {
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
 }
 
+/// The default memory limit of a measuring process: half the machine's memory (`MemTotal` of
+/// `/proc/meminfo`), or 4 GiB where that cannot be read.
+fn default_max_kib() -> u64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("MemTotal:"))
+                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+        })
+        .map_or(4 << 20, |total| total / 2)
+}
+
+/// The note of a process killed at the memory limit.
+fn memory_note(max_kib: u64) -> String {
+    format!("killed at {} MiB, the memory limit", max_kib / 1024)
+}
+
 /// How a child process ended.
 struct Outcome {
-    /// `None`: killed at the time limit.
+    /// `None`: killed at the time limit or the memory limit.
     code: Option<i32>,
+    /// Killed at the memory limit.
+    over_memory: bool,
     stdout: String,
     stderr: String,
     seconds: f64,
@@ -90,8 +112,10 @@ struct Outcome {
     peak_kib: Option<u64>,
 }
 
-/// Runs `cmd` with a hard time limit, polling its peak memory.
-fn run_limited(mut cmd: Command, limit: f64) -> std::io::Result<Outcome> {
+/// Runs `cmd` with a hard time limit and a memory limit, polling its peak memory: a child whose
+/// peak passes `max_kib` is killed (an expanded derivation of a long chain grows by gigabytes a
+/// second; the 12-joint chain's Euler–Lagrange passed 16 GiB within its minute).
+fn run_limited(mut cmd: Command, limit: f64, max_kib: u64) -> std::io::Result<Outcome> {
     cmd.stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped());
@@ -121,6 +145,7 @@ fn run_limited(mut cmd: Command, limit: f64) -> std::io::Result<Outcome> {
     );
     let mut peak = None;
     let mut nap = Duration::from_micros(200);
+    let mut over_memory = false;
     let code = loop {
         if let Some(k) = vm_hwm_kib(&pid) {
             peak = Some(peak.map_or(k, |p: u64| p.max(k)));
@@ -128,7 +153,8 @@ fn run_limited(mut cmd: Command, limit: f64) -> std::io::Result<Outcome> {
         if let Some(status) = child.try_wait()? {
             break Some(status.code().unwrap_or(-1));
         }
-        if start.elapsed().as_secs_f64() >= limit {
+        over_memory = peak.is_some_and(|p| p >= max_kib);
+        if over_memory || start.elapsed().as_secs_f64() >= limit {
             let _ = child.kill();
             let _ = child.wait();
             break None;
@@ -139,6 +165,7 @@ fn run_limited(mut cmd: Command, limit: f64) -> std::io::Result<Outcome> {
     let seconds = start.elapsed().as_secs_f64();
     Ok(Outcome {
         code,
+        over_memory,
         stdout: out.join().unwrap_or_default(),
         stderr: err.join().unwrap_or_default(),
         seconds,
@@ -166,6 +193,8 @@ fn record_methods(m: Method) -> Vec<&'static str> {
 struct Runner {
     exe: PathBuf,
     limit: f64,
+    /// The memory limit, KiB.
+    max_kib: u64,
     min_seconds: f64,
 }
 
@@ -234,11 +263,14 @@ impl Runner {
                 })
                 .collect()
         };
-        match run_limited(cmd, self.limit) {
+        match run_limited(cmd, self.limit, self.max_kib) {
             Err(e) => failed(Status::Error, format!("cannot start: {e}")),
             Ok(o) if o.code.is_none() => {
-                let mut recs: Vec<Record> =
-                    failed(Status::Timeout, format!("killed after {} s", self.limit));
+                let mut recs: Vec<Record> = if o.over_memory {
+                    failed(Status::MemoryLimit, memory_note(self.max_kib))
+                } else {
+                    failed(Status::Timeout, format!("killed after {} s", self.limit))
+                };
                 for r in &mut recs {
                     r.peak_rss_kib = o.peak_kib;
                 }
@@ -470,6 +502,7 @@ pub(super) fn peer_python(args: &BenchArgs) -> Result<PathBuf, String> {
 fn run_peers(
     args: &BenchArgs,
     limit: f64,
+    max_kib: u64,
     chains: usize,
     notes: &mut Vec<String>,
 ) -> Result<Vec<Record>, CliError> {
@@ -509,7 +542,7 @@ fn run_peers(
             let mut rec = Record::new(&spec.name(), robot.dof(), method, Status::Ok);
             if is_chain && timed_out.contains(method) {
                 rec.status = Status::Skipped;
-                rec.note = "a smaller chain timed out".into();
+                rec.note = "a smaller chain ran out of time or memory".into();
                 records.push(rec);
                 continue;
             }
@@ -520,7 +553,7 @@ fn run_peers(
                 cmd.arg("--trigsimp");
             }
             cmd.arg(&path);
-            match run_limited(cmd, limit) {
+            match run_limited(cmd, limit, max_kib) {
                 Err(e) => {
                     rec.status = Status::Error;
                     rec.note = format!("cannot start: {e}");
@@ -528,8 +561,11 @@ fn run_peers(
                 Ok(o) => {
                     rec.peak_rss_kib = o.peak_kib;
                     if o.code.is_none() {
-                        rec.status = Status::Timeout;
-                        rec.note = format!("killed after {limit} s");
+                        (rec.status, rec.note) = if o.over_memory {
+                            (Status::MemoryLimit, memory_note(max_kib))
+                        } else {
+                            (Status::Timeout, format!("killed after {limit} s"))
+                        };
                         if is_chain {
                             timed_out.insert(method);
                         }
@@ -614,6 +650,9 @@ fn scaling_points(records: &[Record]) -> (Vec<Point>, Vec<String>) {
                     y: s,
                 }),
                 (Status::Timeout, _) => notes.push(format!("{group}: timeout at n = {}", r.dof)),
+                (Status::MemoryLimit, _) => {
+                    notes.push(format!("{group}: memory limit at n = {}", r.dof))
+                }
                 _ => {}
             }
         }
@@ -773,6 +812,15 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             "error: --timeout must be a positive number of seconds, not {limit}"
         )));
     }
+    let max_kib = match args.max_memory {
+        Some(0) => {
+            return Err(CliError::Input(
+                "error: --max-memory must be a positive number of MiB".into(),
+            ))
+        }
+        Some(mib) => mib.saturating_mul(1024),
+        None => default_max_kib(),
+    };
     let chains = args.max_joints.unwrap_or(if args.quick { 6 } else { 12 });
     if chains > 64 {
         return Err(CliError::Input("error: --max-joints is at most 64".into()));
@@ -807,6 +855,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
     let runner = Runner {
         exe,
         limit,
+        max_kib,
         min_seconds: if args.quick { 0.05 } else { 0.5 },
     };
     let mut notes = Vec::new();
@@ -854,13 +903,16 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             if blocked {
                 for name in record_methods(m) {
                     let mut r = Record::new(&spec.name(), n, name, Status::Skipped);
-                    r.note = "a smaller chain timed out".into();
+                    r.note = "a smaller chain ran out of time or memory".into();
                     records.push(r);
                 }
                 continue;
             }
             let recs = runner.one(&spec, n, m);
-            if recs.iter().any(|r| r.status == Status::Timeout) {
+            if recs
+                .iter()
+                .any(|r| matches!(r.status, Status::Timeout | Status::MemoryLimit))
+            {
                 timed_out.insert(m);
             }
             records.extend(recs);
@@ -969,7 +1021,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         ));
     }
     if args.peers {
-        records.extend(run_peers(&args, limit, chains, &mut notes)?);
+        records.extend(run_peers(&args, limit, max_kib, chains, &mut notes)?);
     }
     records.extend(super::bench_native::count_records(&mut notes));
     records.extend(super::bench_native::native_records(
@@ -1035,4 +1087,55 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         md.display(),
         out.display()
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A shell holding about 40 MB in a variable (`head` fills it, then it waits for `sleep`, which
+    /// does not hold the output pipe, so a killed shell closes it).
+    fn holding_40_mb(seconds: u32) -> Command {
+        let mut cmd = Command::new("sh");
+        cmd.arg("-c").arg(format!(
+            "x=$(head -c 40000000 /dev/zero | tr '\\0' a); sleep {seconds} >/dev/null 2>&1; echo ${{#x}}"
+        ));
+        cmd
+    }
+
+    /// A child past the memory limit is killed and says so; one within both limits runs to its
+    /// end; one past the time limit is killed at it, not for memory.
+    #[test]
+    fn a_child_is_killed_at_the_memory_limit_and_only_there() {
+        let over = run_limited(holding_40_mb(20), 60.0, 10 << 10).unwrap();
+        assert!(over.code.is_none() && over.over_memory, "{:?}", over.code);
+        assert!(
+            over.seconds < 20.0,
+            "killed before it ended: {} s",
+            over.seconds
+        );
+        assert!(over.peak_kib.is_some_and(|k| k >= 10 << 10));
+        let within = run_limited(holding_40_mb(0), 60.0, 1 << 30).unwrap();
+        assert_eq!(within.code, Some(0));
+        assert!(!within.over_memory);
+        assert_eq!(within.stdout.trim(), "40000000");
+        let slow = run_limited(holding_40_mb(20), 0.5, 1 << 30).unwrap();
+        assert!(slow.code.is_none() && !slow.over_memory);
+    }
+
+    /// Every status reads back from its name (the CSV's), the memory limit's included.
+    #[test]
+    fn statuses_read_back_from_their_names() {
+        for st in [
+            Status::Ok,
+            Status::Timeout,
+            Status::MemoryLimit,
+            Status::Skipped,
+            Status::Failed,
+            Status::Error,
+        ] {
+            assert_eq!(Status::parse(st.name()), Some(st));
+        }
+        assert_eq!(Status::MemoryLimit.name(), "memory-limit");
+    }
 }

@@ -296,6 +296,11 @@ pub enum Command {
         /// Time limit per measuring process, seconds (default 60; 10 with --quick).
         #[arg(long, value_name = "SECONDS")]
         timeout: Option<f64>,
+        /// Memory limit per measuring process, MiB (default half the machine's memory): a process
+        /// past it is killed and recorded as `memory-limit`, and the larger chains of its method
+        /// are skipped, as after a timeout.
+        #[arg(long, value_name = "MIB")]
+        max_memory: Option<u64>,
         /// The largest generic chain (default 12; 6 with --quick).
         #[arg(long, value_name = "N")]
         max_joints: Option<usize>,
@@ -547,6 +552,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             out,
             peers,
             timeout,
+            max_memory,
             max_joints,
             examples,
             python,
@@ -557,6 +563,7 @@ pub fn run(args: Args) -> Result<String, CliError> {
             out,
             peers,
             timeout,
+            max_memory,
             max_joints,
             examples,
             python,
