@@ -49,18 +49,19 @@ impl Status {
         }
     }
 
+    /// Every status.
+    pub const ALL: [Status; 6] = [
+        Status::Ok,
+        Status::Timeout,
+        Status::MemoryLimit,
+        Status::Skipped,
+        Status::Failed,
+        Status::Error,
+    ];
+
     /// The status of a name.
     pub fn parse(s: &str) -> Option<Status> {
-        [
-            Status::Ok,
-            Status::Timeout,
-            Status::MemoryLimit,
-            Status::Skipped,
-            Status::Failed,
-            Status::Error,
-        ]
-        .into_iter()
-        .find(|st| st.name() == s)
+        Status::ALL.into_iter().find(|st| st.name() == s)
     }
 }
 

@@ -1126,14 +1126,9 @@ mod tests {
     /// Every status reads back from its name (the CSV's), the memory limit's included.
     #[test]
     fn statuses_read_back_from_their_names() {
-        for st in [
-            Status::Ok,
-            Status::Timeout,
-            Status::MemoryLimit,
-            Status::Skipped,
-            Status::Failed,
-            Status::Error,
-        ] {
+        let names: std::collections::HashSet<&str> = Status::ALL.iter().map(|s| s.name()).collect();
+        assert_eq!(names.len(), Status::ALL.len(), "the names are distinct");
+        for st in Status::ALL {
             assert_eq!(Status::parse(st.name()), Some(st));
         }
         assert_eq!(Status::MemoryLimit.name(), "memory-limit");

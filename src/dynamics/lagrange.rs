@@ -227,8 +227,13 @@ impl MassMatrix {
             }
             Poly::sum(&parts)
         });
+        Self::mirrored(n, pairs.into_iter().zip(entries))
+    }
+
+    /// `D` from its upper triangle `((k, j), d_kj)`, `k ≤ j`, and whether it is constant.
+    fn mirrored(n: usize, upper: impl IntoIterator<Item = ((usize, usize), Poly)>) -> MassMatrix {
         let mut d = vec![vec![Poly::zero(); n]; n];
-        for ((k, j), entry) in pairs.into_iter().zip(entries) {
+        for ((k, j), entry) in upper {
             d[j][k] = entry.clone();
             d[k][j] = entry;
         }
@@ -238,9 +243,7 @@ impl MassMatrix {
             constant,
         }
     }
-}
 
-impl MassMatrix {
     /// `D(q)` by composite rigid bodies ([`super::compact::crba`]), expanded: the same polynomials
     /// as [`MassMatrix::derive`] (both are the canonical form of the same matrix), from the compact
     /// `D` of `compact` when it is derived already, else from a composite-body `D` of its own.
@@ -269,21 +272,15 @@ impl MassMatrix {
         // One expander for every entry: the entries share their composite bodies' names, each
         // expanded once.
         let mut expander = arena.expander(usize::MAX);
-        let mut out = vec![vec![Poly::zero(); n]; n];
-        for k in 0..n {
-            for j in k..n {
+        let upper = (0..n)
+            .flat_map(|k| (k..n).map(move |j| (k, j)))
+            .map(|(k, j)| {
                 let entry = expander
                     .expand(&d[k][j])
                     .expect("no expansion passes an unbounded budget");
-                out[j][k] = entry.clone();
-                out[k][j] = entry;
-            }
-        }
-        let constant = out.iter().flatten().all(is_constant);
-        MassMatrix {
-            d: Arc::new(out),
-            constant,
-        }
+                ((k, j), entry)
+            });
+        Self::mirrored(n, upper)
     }
 }
 
