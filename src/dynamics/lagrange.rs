@@ -122,15 +122,9 @@ impl MassMatrix {
     ) -> MassMatrix {
         let local = local_jacobians(robot, kin);
         let n = robot.dof();
-        let size = |v: &Vec3<Poly>| v.0.iter().map(Poly::len).sum::<usize>();
         let products: usize = (0..n)
             .flat_map(|k| (k..n).map(move |j| (k, j)))
-            .map(|(k, j)| {
-                local
-                    .iter()
-                    .map(|(v, _)| size(&v[k]) * size(&v[j]))
-                    .sum::<usize>()
-            })
+            .map(|(k, j)| term_products(&local, k, j))
             .sum();
         let numeric = robot.links.iter().all(|l| l.mass.as_rational().is_some());
         if by_composite_bodies(products, numeric, compact.is_some()) {
@@ -189,11 +183,7 @@ impl MassMatrix {
             if interns {
                 return 0;
             }
-            let size = |v: &Vec3<Poly>| v.0.iter().map(Poly::len).sum::<usize>();
-            (0..n)
-                .map(|i| size(&local[i].0[k]) * size(&local[i].0[j]))
-                .sum::<usize>()
-                * PRODUCT_WORK
+            term_products(&local, k, j) * PRODUCT_WORK
         };
         let entries = parallel::map(&pairs, weight, WORTH_SHARING, |&(k, j)| {
             let mut parts = Vec::new();
@@ -309,6 +299,13 @@ pub const COMPOSITE_FROM: usize = 40_000;
 
 /// [`COMPOSITE_FROM`] for a robot whose masses are numbers.
 pub const COMPOSITE_FROM_NUMERIC: usize = 5_000;
+
+/// The products of terms the Jacobian route multiplies for `d_kj`: over the links, the terms of
+/// column `k` of `R_iᵀ J_v,i` times those of column `j`.
+fn term_products(local: &[(Columns, Columns)], k: usize, j: usize) -> usize {
+    let size = |v: &Vec3<Poly>| v.0.iter().map(Poly::len).sum::<usize>();
+    local.iter().map(|(v, _)| size(&v[k]) * size(&v[j])).sum()
+}
 
 /// Each link's `(R_iᵀ J_v,i, R_iᵀ J_ω,i)` at its centre of mass ([`Kinematics::local_jacobians`]).
 fn local_jacobians(robot: &Robot, kin: &Kinematics) -> Vec<(Columns, Columns)> {
