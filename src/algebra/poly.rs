@@ -752,18 +752,14 @@ impl Poly {
     pub fn derive(&self, d_atom: &mut dyn FnMut(AtomId) -> Option<Poly>) -> Poly {
         // The derivative of each distinct atom, asked for once (a robot's polynomial has a few dozen
         // atoms, so a sorted list beats a hash map).
-        let mut memo: Vec<(AtomId, Option<Poly>)> = Vec::new();
-        for (m, _) in &self.terms {
-            for &(id, _) in m.0.iter() {
-                if let Err(k) = memo.binary_search_by_key(&id, |(a, _)| *a) {
-                    memo.insert(k, (id, None));
-                }
-            }
-        }
-        for (id, d) in memo.iter_mut() {
-            *d = d_atom(*id);
-        }
-        memo.retain(|(_, d)| d.is_some());
+        let (mut atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
+        // Asked in the order of their ids, as ever (a derivative may intern new atoms).
+        atoms.sort_unstable();
+        // The atoms with a derivative (a few: those of one coordinate), found by a linear search.
+        let memo: Vec<(AtomId, Poly)> = atoms
+            .into_iter()
+            .filter_map(|id| Some((id, d_atom(id)?)))
+            .collect();
         if memo.is_empty() {
             return Poly::zero();
         }
@@ -771,10 +767,9 @@ impl Poly {
         let (mut rest, mut buf) = (Vec::new(), Vec::new());
         for (m, c) in &self.terms {
             for (pos, &(id, e)) in m.0.iter().enumerate() {
-                let Ok(k) = memo.binary_search_by_key(&id, |(a, _)| *a) else {
+                let Some((_, d)) = memo.iter().find(|(a, _)| *a == id) else {
                     continue;
                 };
-                let Some(d) = &memo[k].1 else { continue };
                 // `m / id`, the exponent of `id` lowered by one, without a new monomial.
                 rest.clear();
                 rest.extend_from_slice(&m.0[..pos]);
@@ -782,10 +777,23 @@ impl Poly {
                     rest.push((id, e - 1));
                 }
                 rest.extend_from_slice(&m.0[pos + 1..]);
-                let k = c * &Rational::int(e as i64);
+                // `e c`, then times each coefficient of the derivative (±1 for a sine or cosine):
+                // the products by ±1 are copies.
+                let k = if e == 1 {
+                    c.clone()
+                } else {
+                    c * &Rational::int(e as i64)
+                };
                 for (n, dc) in &d.terms {
                     mul_into(&rest, &n.0, &mut buf);
-                    acc.add_product(&buf, &k * dc);
+                    let kd = if dc.is_one() {
+                        k.clone()
+                    } else if dc.is_minus_one() {
+                        -&k
+                    } else {
+                        &k * dc
+                    };
+                    acc.add_product(&buf, kd);
                 }
             }
         }
@@ -825,7 +833,9 @@ impl Poly {
     /// each term's factors sorted by rank, and the terms sorted once, on these numbers instead of
     /// on the expressions ([`cmp_ranked`]).
     pub(crate) fn ranked(&self) -> Option<Ranked<'_>> {
-        let (atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
+        let (mut atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
+        // Asked in the order of their ids, as ever (a derivative may intern new atoms).
+        atoms.sort_unstable();
         let mut bases = Vec::with_capacity(atoms.len());
         for &id in &atoms {
             let e = atom::to_expr(id);

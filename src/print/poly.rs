@@ -641,6 +641,11 @@ impl<'a> Renderer<'a> {
                 .all(|(i, (_, x, _))| parts[..i].iter().all(|(_, y, _)| y != x)),
             "the multipliers are distinct"
         );
+        if !nested {
+            if let Some(text) = self.merged_multiples(parts) {
+                return Some(text);
+            }
+        }
         let len: usize = parts.iter().map(|(p, _, _)| p.len()).sum();
         let mut buf: Vec<(u32, i32)> = Vec::with_capacity(
             len + parts
@@ -677,6 +682,153 @@ impl<'a> Renderer<'a> {
         Some(self.sorted_sum(&buf, terms, nested, None))
     }
 
+    /// [`Renderer::sum_of_multiples`], not nested, when each multiplier `x_i` ranks after every
+    /// factor of its `p_i` (`q̇` in `C(q, q̇)`); `None` otherwise. Each part's terms times `x_i`
+    /// then keep the order of its terms with a list that is a prefix of others moved after them
+    /// (comparing `a x_i` with `a b x_i`, `x_i` comes after `b`): from the canonical order its lent
+    /// text was printed in ([`TermTexts::order`]) one pass over a stack of prefixes puts them in
+    /// order, and the parts, each in order, are merged rather than sorted together.
+    fn merged_multiples(
+        &mut self,
+        parts: &[(&Poly, AtomId, Option<&TermTexts>)],
+    ) -> Option<String> {
+        let lends = self.style != Style::Latex;
+        let parts: Vec<_> = parts.iter().filter(|(p, _, _)| !p.is_zero()).collect();
+        let factors: usize = parts
+            .iter()
+            .flat_map(|(p, _, _)| p.terms())
+            .map(|(m, _)| m.factors().len() + 1)
+            .sum();
+        let mut buf: Vec<(u32, i32)> = Vec::with_capacity(factors);
+        let mut runs: Vec<Vec<Term>> = Vec::with_capacity(parts.len());
+        // What follows a lent text in each run: the separator and x_i.
+        let mut suffixes: Vec<String> = Vec::with_capacity(parts.len());
+        let mut capacity = 0;
+        for &&(p, x, texts) in &parts {
+            let x = self.ranks.rank(x);
+            let mut suffix = String::from(if self.style == Style::Ascii { '*' } else { ' ' });
+            self.push_factor(&mut suffix, &mut Measure::default(), x, 1, false);
+            suffixes.push(suffix);
+            let texts = texts.filter(|t| t.order.len() == p.len() && t.ranges.len() == p.len());
+            let mut terms: Vec<Term> = Vec::with_capacity(p.len());
+            for (t, (m, c)) in p.terms().iter().enumerate() {
+                let start = buf.len();
+                buf.extend(m.factors().iter().map(|&(id, e)| (self.ranks.rank(id), e)));
+                let list = &mut buf[start..];
+                list.sort_unstable_by_key(|&(r, _)| r);
+                if list.last().is_some_and(|&(r, _)| r >= x) {
+                    return None;
+                }
+                // As in `sum_of_multiples`: a product with a negative power is a fraction, and `1`
+                // alone is not written before a factor.
+                let copies = lends && list.iter().all(|&(_, e)| e > 0);
+                buf.push((x, 1));
+                let mut term = Term::new(start, buf.len(), c, t);
+                term.lent = texts
+                    .filter(|_| copies)
+                    .map(|texts| texts.term(t))
+                    .filter(|&text| text != "1");
+                terms.push(term);
+            }
+            let Some(texts) = texts else {
+                capacity += 16 * (buf.len() - terms.first().map_or(0, |t| t.start)) + 32 * p.len();
+                // The lists end in the same x_i, so their canonical order is the one wanted.
+                sort_terms(&mut terms, &buf);
+                runs.push(terms);
+                continue;
+            };
+            capacity += texts.text.len() + 8 * p.len();
+            // The factors before x_i.
+            let list = |t: &Term| &buf[t.start..t.end - 1];
+            let mut run: Vec<Term> = Vec::with_capacity(p.len());
+            // A list and the lists it is a prefix of, each a prefix of the next.
+            let mut prefixes: Vec<Term> = Vec::new();
+            for &i in &texts.order {
+                let t = terms[i as usize];
+                let b = list(&t);
+                while let Some(top) = prefixes.last() {
+                    let a = list(top);
+                    if b.len() > a.len() && b[..a.len()] == *a {
+                        break;
+                    }
+                    run.extend(prefixes.pop());
+                }
+                prefixes.push(t);
+            }
+            run.extend(prefixes.into_iter().rev());
+            runs.push(run);
+        }
+        // The heads of the runs, the first in the canonical order on top.
+        struct Head<'b> {
+            list: &'b [(u32, i32)],
+            run: usize,
+            at: usize,
+        }
+        impl PartialEq for Head<'_> {
+            fn eq(&self, other: &Self) -> bool {
+                self.list == other.list
+            }
+        }
+        impl Eq for Head<'_> {}
+        impl PartialOrd for Head<'_> {
+            fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+                Some(self.cmp(other))
+            }
+        }
+        impl Ord for Head<'_> {
+            fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+                cmp_factor_lists(other.list, self.list)
+            }
+        }
+        let head = |run: usize, at: usize| {
+            runs[run].get(at).map(|t| Head {
+                list: &buf[t.start..t.end],
+                run,
+                at,
+            })
+        };
+        let mut heads: std::collections::BinaryHeap<Head> =
+            (0..runs.len()).filter_map(|r| head(r, 0)).collect();
+        // The head written next: it stays out of the heap while its run comes first.
+        let mut current = heads.pop();
+        if current.is_none() {
+            return Some("0".to_string());
+        }
+        let mut out = String::with_capacity(capacity);
+        let mut first = true;
+        while let Some(h) = current {
+            let t = &runs[h.run][h.at];
+            self.push_sign(&mut out, first, t);
+            first = false;
+            match t.lent {
+                Some(text) => {
+                    out.push_str(text);
+                    out.push_str(&suffixes[h.run]);
+                }
+                None => self.write_term(&mut out, t, &buf),
+            }
+            current = match head(h.run, h.at + 1) {
+                None => heads.pop(),
+                Some(next) => match heads.peek_mut() {
+                    Some(mut top) if *top > next => Some(std::mem::replace(&mut *top, next)),
+                    _ => Some(next),
+                },
+            };
+        }
+        Some(out)
+    }
+
+    /// Appends the sign before a term of a sum (not nested): `-` before a negative first term,
+    /// ` + ` or ` - ` before any other.
+    fn push_sign(&self, out: &mut String, first: bool, t: &Term) {
+        match (first, t.c.is_negative()) {
+            (true, false) => {}
+            (true, true) => out.push('-'),
+            (false, false) => out.push_str(" + "),
+            (false, true) => out.push_str(" - "),
+        }
+    }
+
     /// The sum of `terms` (ranges of `buf`, each a factor list by rank, and a coefficient, the
     /// constant term, if any, last) in the canonical order, printed; `record`, if asked for (not
     /// nested), takes where each term's magnitude lies in the text and the order of the terms
@@ -710,12 +862,7 @@ impl<'a> Renderer<'a> {
         // Not nested: always spaced, so every term is written straight into the text.
         let mut out = String::with_capacity(8 * buf.len() + 8 * terms.len());
         for (i, t) in terms.iter().enumerate() {
-            match (i, t.c.is_negative()) {
-                (0, false) => {}
-                (0, true) => out.push('-'),
-                (_, false) => out.push_str(" + "),
-                (_, true) => out.push_str(" - "),
-            }
+            self.push_sign(&mut out, i == 0, t);
             let start = out.len() as u32;
             self.write_term(&mut out, t, buf);
             if let Some(record) = record.as_deref_mut() {
@@ -800,6 +947,63 @@ mod tests {
     }
 
     proptest::proptest! {
+        /// `Σ_i p_i q̇_i` from the parts' own texts (each part's terms in its printed order, those
+        /// whose list is a prefix of others moved after them, the parts merged) prints as its
+        /// expansion: random parts over a few angles and parameters, whose monomials are often
+        /// prefixes of one another (`m2`, `m2 sin(q1)`, `m2 sin(q1) cos(q1)^2`), with constants.
+        #[test]
+        fn merged_multiples_print_as_the_expansion(
+            parts in proptest::collection::vec(
+                proptest::collection::vec(
+                    (proptest::collection::vec((0usize..5, 1i32..3), 0..5), -3i64..4),
+                    0..12,
+                ),
+                1..4,
+            ),
+        ) {
+            let bases = ["m2", "a1", "sin(q1)", "cos(q1)", "sin(q2)"];
+            let parts: Vec<(Poly, Poly)> = parts
+                .iter()
+                .enumerate()
+                .map(|(i, terms)| {
+                    let terms: Vec<Poly> = terms
+                        .iter()
+                        .map(|(factors, c)| {
+                            let mut t = Poly::constant(Rational::int(*c));
+                            for &(b, e) in factors {
+                                t = t.mul(&p(&format!("{}^{e}", bases[b])));
+                            }
+                            t
+                        })
+                        .collect();
+                    (Poly::sum(&terms), p(&format!("qd{}", i + 1)))
+                })
+                .collect();
+            let expanded = Poly::sum(&parts.iter().map(|(c, x)| c.mul(x)).collect::<Vec<_>>());
+            let all: Vec<&Poly> = parts.iter().flat_map(|(c, x)| [c, x]).collect();
+            let ranks = Ranks::of(all).expect("plain atoms");
+            for style in [Style::Text, Style::Ascii, Style::Latex] {
+                let texts: Vec<TermTexts> = parts
+                    .iter()
+                    .map(|(c, _)| Renderer::new(&ranks, style).sum_with_terms(c))
+                    .collect();
+                let atoms: Vec<(&Poly, AtomId, Option<&TermTexts>)> = parts
+                    .iter()
+                    .zip(&texts)
+                    .map(|((c, x), t)| (c, x.terms()[0].0.factors()[0].0, Some(t)))
+                    .collect();
+                let want = if expanded.is_zero() {
+                    "0".to_string()
+                } else {
+                    Renderer::new(&ranks, style).sum(&expanded, false)
+                };
+                proptest::prop_assert_eq!(
+                    Renderer::new(&ranks, style).sum_of_multiples(&atoms, false),
+                    Some(want)
+                );
+            }
+        }
+
         /// Sorting by the packed prefix and then the whole lists is the order of
         /// `cmp_factor_lists`: lists longer than eight factors, lists that are prefixes of others,
         /// equal ranks with other powers, negative powers, and ranks or powers past a byte.
