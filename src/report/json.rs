@@ -150,18 +150,28 @@ fn weight(job: &Job) -> usize {
     }
 }
 
+/// A printed expression and whether it is [`super::pretty::plain`], checked on the thread that
+/// printed it (see [`Doc::Known`]).
+type Shown = (String, bool);
+
+/// An expression's text, checked.
+fn shown(text: String) -> Shown {
+    let plain = super::pretty::plain(&text);
+    (text, plain)
+}
+
 /// The expressions of a document, printed by stage.
 struct Printed {
     /// `d_kj` for `k ≤ j`, row by row.
-    d_upper: Vec<String>,
+    d_upper: Vec<Shown>,
     /// The non-zero `c_ijk` with `i ≤ j`, in index order.
-    symbols: Vec<String>,
+    symbols: Vec<Shown>,
     /// `g_1..g_n`, then `P`.
-    potential: Vec<String>,
+    potential: Vec<Shown>,
     /// The left sides.
-    lhs: Vec<String>,
+    lhs: Vec<Shown>,
     /// `C`, row by row.
-    coriolis: Vec<String>,
+    coriolis: Vec<Shown>,
 }
 
 /// The pairs `(k, j)` with `k ≤ j < n`, row by row.
@@ -258,17 +268,21 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         &flat,
         |(_, j)| weight(j),
         WORTH_SHARING,
-        |&(s, j)| print(stages[s].0, j, &[], &[]),
+        |&(s, j)| {
+            let texts = print(stages[s].0, j, &[], &[]);
+            let plain = super::pretty::plain(&texts.text);
+            (texts, plain)
+        },
     )
     .into_iter();
     let mut next = |s: usize| {
         texts
             .by_ref()
             .take(stages[s].1.len())
-            .collect::<Vec<TermTexts>>()
+            .unzip::<TermTexts, bool, Vec<TermTexts>, Vec<bool>>()
     };
-    let (d_texts, symbol_texts) = (next(0), next(1));
-    let potential: Vec<String> = next(2).into_iter().map(|t| t.text).collect();
+    let ((d_texts, d_plain), (symbol_texts, symbols_plain)) = (next(0), next(1));
+    let potential: Vec<Shown> = next(2).0.into_iter().map(|t| shown(t.text)).collect();
     // Then the equations and C, which copy what they can of D's and the symbols' texts.
     let mut d_index = vec![vec![usize::MAX; n]; n];
     for (i, (k, j)) in upper(n).into_iter().enumerate() {
@@ -307,14 +321,17 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
             } else {
                 Vec::new()
             };
-            print(&shared, &late[i], &symbol_texts, &lent).text
+            shown(print(&shared, &late[i], &symbol_texts, &lent).text)
         },
     )
     .into_iter();
-    let lhs: Vec<String> = late_texts.by_ref().take(sides.len()).collect();
+    let lhs: Vec<Shown> = late_texts.by_ref().take(sides.len()).collect();
+    let with = |texts: Vec<TermTexts>, plain: Vec<bool>| -> Vec<Shown> {
+        texts.into_iter().map(|t| t.text).zip(plain).collect()
+    };
     Printed {
-        d_upper: d_texts.into_iter().map(|t| t.text).collect(),
-        symbols: symbol_texts.into_iter().map(|t| t.text).collect(),
+        d_upper: with(d_texts, d_plain),
+        symbols: with(symbol_texts, symbols_plain),
         coriolis: late_texts.collect(),
         potential,
         lhs,
@@ -355,20 +372,22 @@ fn document<'a>(
 ) -> Doc<'a> {
     let n = der.robot().dof();
     let strs = |v: &'a [String]| Doc::Arr(v.iter().map(|s| Doc::Str(s)).collect());
+    let known = |(s, plain): &'a Shown| Doc::Known(s, *plain);
+    let shown = |v: &'a [Shown]| Doc::Arr(v.iter().map(known).collect());
     let mut grid: Vec<Vec<Doc>> = vec![vec![Doc::Str(""); n]; n];
     for ((k, j), s) in upper(n).into_iter().zip(&printed.d_upper) {
-        grid[j][k] = Doc::Str(s);
-        grid[k][j] = Doc::Str(s);
+        grid[j][k] = known(s);
+        grid[k][j] = known(s);
     }
     let mass_matrix = Doc::Arr(grid.into_iter().map(Doc::Arr).collect());
-    let coriolis = Doc::Arr(printed.coriolis.chunks(n.max(1)).map(strs).collect());
+    let coriolis = Doc::Arr(printed.coriolis.chunks(n.max(1)).map(shown).collect());
     // Printed for i ≤ j; (j, i, k) comes later in index order and takes (i, j, k)'s string.
     let mut symbols = printed.symbols.iter();
-    let mut seen: HashMap<(usize, usize, usize), &str> = HashMap::new();
+    let mut seen: HashMap<(usize, usize, usize), &Shown> = HashMap::new();
     let christoffel: Vec<Doc> = nonzero_christoffel(der.christoffel())
         .iter()
         .map(|&(i, jj, k, _)| {
-            let value: &str = if i <= jj {
+            let value: &Shown = if i <= jj {
                 let v = symbols.next().expect("one string per symbol");
                 seen.insert((i, jj, k), v);
                 v
@@ -379,7 +398,7 @@ fn document<'a>(
                 ("i", Doc::Scalar(&meta.numbers[i])),
                 ("j", Doc::Scalar(&meta.numbers[jj])),
                 ("k", Doc::Scalar(&meta.numbers[k])),
-                ("value", Doc::Str(value)),
+                ("value", known(value)),
             ])
         })
         .collect();
@@ -392,7 +411,7 @@ fn document<'a>(
         .lhs
         .iter()
         .zip(inputs)
-        .map(|(l, u)| Doc::Obj(vec![("lhs", Doc::Str(l)), ("rhs", Doc::Str(u))]))
+        .map(|(l, u)| Doc::Obj(vec![("lhs", known(l)), ("rhs", Doc::Str(u))]))
         .collect();
     let method_name = match method {
         Method::Lagrange => "lagrange",
@@ -407,10 +426,10 @@ fn document<'a>(
         ("mass_matrix", mass_matrix),
         ("coriolis", coriolis),
         ("christoffel", Doc::Arr(christoffel)),
-        ("gravity", strs(gravity)),
-        ("potential", Doc::Str(potential)),
+        ("gravity", shown(gravity)),
+        ("potential", known(potential)),
         ("equations", Doc::Arr(equations)),
-        ("tau", strs(&printed.lhs)),
+        ("tau", shown(&printed.lhs)),
         ("facts", strs(&meta.facts)),
         ("warnings", strs(&meta.warnings)),
     ])
@@ -469,9 +488,10 @@ mod tests {
                 let c = &der.coriolis()[k][j];
                 if c.len() > JSON_TIDY_BUDGET {
                     large += 1;
+                    // Checked plain where printed: an expression needs no escaping.
                     assert_eq!(
                         printed.coriolis[k * n + j],
-                        poly_to_string(c, Style::Ascii),
+                        (poly_to_string(c, Style::Ascii), true),
                         "C{k}{j}"
                     );
                 }
@@ -483,7 +503,7 @@ mod tests {
             .filter(|(i, j, _, _)| i <= j);
         for ((i, j, k, c), text) in symbols.zip(&printed.symbols) {
             if c.len() > JSON_TIDY_BUDGET {
-                assert_eq!(*text, poly_to_string(c, Style::Ascii), "c{i}{j}{k}");
+                assert_eq!(*text, (poly_to_string(c, Style::Ascii), true), "c{i}{j}{k}");
             }
         }
     }

@@ -12,6 +12,9 @@ use serde_json::{Map, Value};
 pub enum Doc<'a> {
     /// A string.
     Str(&'a str),
+    /// A string and whether it is [`plain`], decided where it was made: the threads that print a
+    /// document's expressions check them, so the thread writing megabytes of them does not.
+    Known(&'a str, bool),
     /// `null`, a boolean or a number.
     Scalar(&'a Value),
     /// An array.
@@ -36,7 +39,7 @@ impl<'a> From<&'a Value> for Doc<'a> {
 impl From<&Doc<'_>> for Value {
     fn from(doc: &Doc<'_>) -> Value {
         match doc {
-            Doc::Str(s) => Value::String(s.to_string()),
+            Doc::Str(s) | Doc::Known(s, _) => Value::String(s.to_string()),
             Doc::Scalar(v) => (*v).clone(),
             Doc::Arr(items) => Value::Array(items.iter().map(Value::from).collect()),
             Doc::Obj(members) => {
@@ -136,7 +139,7 @@ impl Out<'_> {
 fn size(doc: &Doc, depth: usize) -> usize {
     let line = 2 * (depth + 1) + 4;
     match doc {
-        Doc::Str(s) => s.len() + 2,
+        Doc::Str(s) | Doc::Known(s, _) => s.len() + 2,
         Doc::Arr(items) => {
             items
                 .iter()
@@ -157,7 +160,7 @@ fn size(doc: &Doc, depth: usize) -> usize {
 
 /// Whether a string is written as it stands between quotes: no quote, backslash or control
 /// character (which JSON escapes).
-fn plain(s: &str) -> bool {
+pub fn plain(s: &str) -> bool {
     // Read whole (no early exit), so the loop runs over wide registers.
     !s.bytes().fold(false, |any, b| {
         any | (b < 0x20) | (b == b'"') | (b == b'\\')
@@ -186,6 +189,13 @@ fn newline(out: &mut Out, depth: usize) {
 fn write(out: &mut Out, doc: &Doc, depth: usize) {
     match doc {
         Doc::Str(s) => write_str(out, s),
+        Doc::Known(s, true) => {
+            debug_assert!(plain(s), "a string checked plain");
+            out.push('"');
+            out.push_str(s);
+            out.push('"');
+        }
+        Doc::Known(s, false) => write_str(out, s),
         Doc::Arr(items) if items.is_empty() => out.push_str("[]"),
         Doc::Arr(items) => {
             out.push('[');
@@ -276,10 +286,17 @@ mod tests {
         let doc = Doc::Obj(vec![
             (
                 "long",
-                Doc::Arr(vec![Doc::Str(&long), Doc::Str(&long[..10])]),
+                Doc::Arr(vec![
+                    Doc::Str(&long),
+                    Doc::Str(&long[..10]),
+                    Doc::Known(&long, plain(&long)),
+                ]),
             ),
             ("many", Doc::Arr(many.iter().map(|s| Doc::Str(s)).collect())),
             ("quoted", Doc::Str("a \"b\"")),
+            // Checked where it was made: written as it stands, or escaped.
+            ("known", Doc::Known("m2*g", plain("m2*g"))),
+            ("known quoted", Doc::Known("a\\b\n", plain("a\\b\n"))),
         ]);
         let mut written: Vec<u8> = Vec::new();
         write_pretty(&doc, &mut written).expect("a vector takes everything");
