@@ -120,18 +120,29 @@ impl MassMatrix {
         joints: &[JointFrame],
         compact: Option<&CompactDynamics>,
     ) -> MassMatrix {
-        let local = local_jacobians(robot, kin);
-        let n = robot.dof();
-        let products: usize = (0..n)
-            .flat_map(|k| (k..n).map(move |j| (k, j)))
-            .map(|(k, j)| term_products(&local, k, j))
-            .sum();
-        let numeric = robot.links.iter().all(|l| l.mass.as_rational().is_some());
-        if by_composite_bodies(products, numeric, compact.is_some()) {
-            Self::from_composite_bodies(robot, joints, compact)
-        } else {
-            Self::by_jacobians(robot, kin, local)
+        if by_composite_bodies(0, false, compact.is_some()) {
+            return Self::from_composite_bodies(robot, joints, compact);
         }
+        // The products are counted link by link from the last, whose columns are the largest,
+        // and a count past the threshold decides at once: the Jacobians of the links before it
+        // are not built for nothing (the Franka Panda's last link alone passes it).
+        let n = robot.dof();
+        let numeric = robot.links.iter().all(|l| l.mass.as_rational().is_some());
+        let mut local: Vec<(Columns, Columns)> = Vec::with_capacity(n);
+        let mut products = 0;
+        for i in (0..n).rev() {
+            let link = local_jacobian(robot, kin, i);
+            products += (0..n)
+                .flat_map(|k| (k..n).map(move |j| (k, j)))
+                .map(|(k, j)| term_products(std::slice::from_ref(&link), k, j))
+                .sum::<usize>();
+            local.push(link);
+            if by_composite_bodies(products, numeric, false) {
+                return Self::from_composite_bodies(robot, joints, compact);
+            }
+        }
+        local.reverse();
+        Self::by_jacobians(robot, kin, local)
     }
 
     /// [`MassMatrix::derive`] from each link's local Jacobians.
@@ -307,13 +318,16 @@ fn term_products(local: &[(Columns, Columns)], k: usize, j: usize) -> usize {
     local.iter().map(|(v, _)| size(&v[k]) * size(&v[j])).sum()
 }
 
-/// Each link's `(R_iᵀ J_v,i, R_iᵀ J_ω,i)` at its centre of mass ([`Kinematics::local_jacobians`]).
+/// Link `i`'s `(R_iᵀ J_v,i, R_iᵀ J_ω,i)` at its centre of mass ([`Kinematics::local_jacobians`]).
+fn local_jacobian(robot: &Robot, kin: &Kinematics, i: usize) -> (Columns, Columns) {
+    let com = Vec3(std::array::from_fn(|k| to_poly(&robot.links[i].com[k])));
+    kin.local_jacobians(i, &com)
+}
+
+/// Each link's `(R_iᵀ J_v,i, R_iᵀ J_ω,i)` at its centre of mass ([`local_jacobian`]).
 fn local_jacobians(robot: &Robot, kin: &Kinematics) -> Vec<(Columns, Columns)> {
     (0..robot.dof())
-        .map(|i| {
-            let com = Vec3(std::array::from_fn(|k| to_poly(&robot.links[i].com[k])));
-            kin.local_jacobians(i, &com)
-        })
+        .map(|i| local_jacobian(robot, kin, i))
         .collect()
 }
 

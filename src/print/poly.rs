@@ -234,6 +234,7 @@ impl TermTexts {
 /// printers of `print::text` and `print::latex` give, for products without negative powers
 /// (others go through those printers). Products are written into a caller's buffer
 /// ([`Renderer::product_into`]), so printing a large sum allocates little beyond its text.
+#[derive(Clone)]
 pub struct Renderer<'a> {
     ranks: &'a Ranks,
     style: Style,
@@ -254,7 +255,7 @@ pub struct Renderer<'a> {
 /// The factors after a product's number (`sin(q2)*cos(q2)*qd1`), as [`Renderer::tail`] last wrote
 /// them: the terms of a sum come in the canonical order, so the next one mostly begins with the same
 /// factors, and their text is kept rather than put together again factor by factor.
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 struct Tail {
     /// The factors, each with whether it was guarded.
     factors: Vec<FactorKey>,
@@ -309,6 +310,22 @@ impl<'a> Renderer<'a> {
             last: Tail::default(),
             tail_len: 0,
         }
+    }
+
+    /// [`Renderer::new`] with every rank's powers `1..=DENSE_POWERS` rendered already: for many
+    /// sums of the same ranks printed by clones of it (on several threads), each factor rendered
+    /// once rather than once per sum.
+    pub fn warmed(ranks: &'a Ranks, style: Style) -> Renderer<'a> {
+        let mut r = Renderer::new(ranks, style);
+        for rank in 0..ranks.len() as u32 {
+            for exp in 1..=DENSE_POWERS {
+                r.factor(rank, exp, false);
+                if style == Style::Latex {
+                    r.factor(rank, exp, true);
+                }
+            }
+        }
+        r
     }
 
     /// The ranks.
@@ -1178,6 +1195,27 @@ mod tests {
                     "term {t} in {style:?}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn a_warmed_renderer_prints_what_a_fresh_one_prints() {
+        // Every power up to DENSE_POWERS rendered ahead, guarded ones too in LaTeX; higher powers
+        // and negative ones as they come.
+        let p = p("m2*lc2^2*sin(q2)*cos(q2)^5 - 3/2*l1*cos(q2)^2*I1/m2 + sin(q1)^4*a + 5");
+        let ranks = Ranks::of([&p]).expect("plain atoms");
+        for style in [Style::Text, Style::Ascii, Style::Latex] {
+            let warmed = Renderer::warmed(&ranks, style);
+            assert_eq!(
+                warmed.clone().sum_with_terms(&p),
+                Renderer::new(&ranks, style).sum_with_terms(&p),
+                "{style:?}"
+            );
+            assert_eq!(
+                warmed.clone().sum(&p, true),
+                Renderer::new(&ranks, style).sum(&p, true),
+                "{style:?}"
+            );
         }
     }
 

@@ -103,30 +103,30 @@ fn expanded(parts: &[(&Poly, AtomId, usize)]) -> Poly {
 /// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can; an
 /// equation from `lent`, its parts' coefficients as printed.
 fn print(
-    ranks: &Option<Ranks>,
+    renderer: &Option<Renderer>,
     job: &Job,
     symbols: &[TermTexts],
     lent: &[Option<Lent>],
 ) -> TermTexts {
     let text = match job {
         Job::Lhs(l) => l.string_lent(Style::Ascii, lent),
-        Job::Large(p) => match ranks {
-            Some(r) => Renderer::new(r, Style::Ascii).sum(p, false),
+        Job::Large(p) => match renderer {
+            Some(r) => r.clone().sum(p, false),
             None => poly_to_string(p, Style::Ascii),
         },
-        Job::Recorded(p) => match ranks {
-            Some(r) => return Renderer::new(r, Style::Ascii).sum_with_terms(p),
+        Job::Recorded(p) => match renderer {
+            Some(r) => return r.clone().sum_with_terms(p),
             None => poly_to_string(p, Style::Ascii),
         },
         Job::Small(p) => quantity_string(p, Style::Ascii, JSON_TIDY_BUDGET),
-        Job::Rates(parts) if job.len() > JSON_TIDY_BUDGET => ranks
+        Job::Rates(parts) if job.len() > JSON_TIDY_BUDGET => renderer
             .as_ref()
             .and_then(|r| {
                 let lent: Vec<(&Poly, AtomId, Option<&TermTexts>)> = parts
                     .iter()
                     .map(|&(p, x, s)| (p, x, symbols.get(s).filter(|t| !t.ranges.is_empty())))
                     .collect();
-                Renderer::new(r, Style::Ascii).sum_of_multiples(&lent, false)
+                r.clone().sum_of_multiples(&lent, false)
             })
             .unwrap_or_else(|| poly_to_string(&expanded(parts), Style::Ascii)),
         Job::Rates(parts) => quantity_string(&expanded(parts), Style::Ascii, JSON_TIDY_BUDGET),
@@ -254,10 +254,16 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
         .collect();
     let (d_ranks, g_ranks) = (ranks(&d_jobs), ranks(&g_jobs));
     let symbol_jobs = symbols.iter().map(|&p| recorded(p)).collect();
-    let stages: [(&Option<Ranks>, Vec<Job>); 3] = [
-        (&d_ranks, d_jobs),
-        (&shared, symbol_jobs),
-        (&g_ranks, g_jobs),
+    // Each job prints with a clone of its ranking's renderer, its factors rendered once here.
+    fn warmed(r: &Option<Ranks>) -> Option<Renderer<'_>> {
+        r.as_ref().map(|r| Renderer::warmed(r, Style::Ascii))
+    }
+    let (d_renderer, shared_renderer, g_renderer) =
+        (warmed(&d_ranks), warmed(&shared), warmed(&g_ranks));
+    let stages: [(&Option<Renderer>, Vec<Job>); 3] = [
+        (&d_renderer, d_jobs),
+        (&shared_renderer, symbol_jobs),
+        (&g_renderer, g_jobs),
     ];
     let flat: Vec<(usize, &Job)> = stages
         .iter()
@@ -321,7 +327,7 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
             } else {
                 Vec::new()
             };
-            shown(print(&shared, &late[i], &symbol_texts, &lent).text)
+            shown(print(&shared_renderer, &late[i], &symbol_texts, &lent).text)
         },
     )
     .into_iter();
