@@ -750,12 +750,10 @@ impl Poly {
     /// Applies a derivation `D` given on atoms: `D(Π aᵢ^eᵢ) = Σ eᵢ aᵢ^(eᵢ−1) D(aᵢ) Π_{j≠i} aⱼ^eⱼ`.
     /// `d_atom` returns `None` for an atom whose derivative is zero.
     pub fn derive(&self, d_atom: &mut dyn FnMut(AtomId) -> Option<Poly>) -> Poly {
-        // The derivative of each distinct atom, asked for once (a robot's polynomial has a few dozen
-        // atoms, so a sorted list beats a hash map).
-        let (mut atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
-        // Asked in the order of their ids, as ever (a derivative may intern new atoms).
-        atoms.sort_unstable();
-        // The atoms with a derivative (a few: those of one coordinate), found by a linear search.
+        // The derivative of each distinct atom, asked for once, in the order of their ids (as
+        // `distinct` gives them): a derivative may intern new atoms. Those with a derivative are a
+        // few (a coordinate's), looked up by a linear search.
+        let (atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
         let memo: Vec<(AtomId, Poly)> = atoms
             .into_iter()
             .filter_map(|id| Some((id, d_atom(id)?)))
@@ -833,9 +831,7 @@ impl Poly {
     /// each term's factors sorted by rank, and the terms sorted once, on these numbers instead of
     /// on the expressions ([`cmp_ranked`]).
     pub(crate) fn ranked(&self) -> Option<Ranked<'_>> {
-        let (mut atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
-        // Asked in the order of their ids, as ever (a derivative may intern new atoms).
-        atoms.sort_unstable();
+        let (atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
         let mut bases = Vec::with_capacity(atoms.len());
         for &id in &atoms {
             let e = atom::to_expr(id);

@@ -120,7 +120,8 @@ impl MassMatrix {
         joints: &[JointFrame],
         compact: Option<&CompactDynamics>,
     ) -> MassMatrix {
-        if by_composite_bodies(0, false, compact.is_some()) {
+        // The compact dynamics' D, derived already, is expanded ([`by_composite_bodies`]).
+        if compact.is_some() {
             return Self::from_composite_bodies(robot, joints, compact);
         }
         // The products are counted link by link from the last, whose columns are the largest,

@@ -288,7 +288,11 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
             .unzip::<TermTexts, bool, Vec<TermTexts>, Vec<bool>>()
     };
     let ((d_texts, d_plain), (symbol_texts, symbols_plain)) = (next(0), next(1));
-    let potential: Vec<Shown> = next(2).0.into_iter().map(|t| shown(t.text)).collect();
+    let with = |texts: Vec<TermTexts>, plain: Vec<bool>| -> Vec<Shown> {
+        texts.into_iter().map(|t| t.text).zip(plain).collect()
+    };
+    let (g_texts, g_plain) = next(2);
+    let potential = with(g_texts, g_plain);
     // Then the equations and C, which copy what they can of D's and the symbols' texts.
     let mut d_index = vec![vec![usize::MAX; n]; n];
     for (i, (k, j)) in upper(n).into_iter().enumerate() {
@@ -332,9 +336,6 @@ fn print_all(der: &Derivation, method: Method) -> Printed {
     )
     .into_iter();
     let lhs: Vec<Shown> = late_texts.by_ref().take(sides.len()).collect();
-    let with = |texts: Vec<TermTexts>, plain: Vec<bool>| -> Vec<Shown> {
-        texts.into_iter().map(|t| t.text).zip(plain).collect()
-    };
     Printed {
         d_upper: with(d_texts, d_plain),
         symbols: with(symbol_texts, symbols_plain),

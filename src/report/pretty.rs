@@ -12,8 +12,9 @@ use serde_json::{Map, Value};
 pub enum Doc<'a> {
     /// A string.
     Str(&'a str),
-    /// A string and whether it is [`plain`], decided where it was made: the threads that print a
-    /// document's expressions check them, so the thread writing megabytes of them does not.
+    /// A string and whether it is plain (nothing to escape, as `plain` decides), decided where it
+    /// was made: the threads that print a document's expressions check them, so the thread
+    /// writing megabytes of them does not.
     Known(&'a str, bool),
     /// `null`, a boolean or a number.
     Scalar(&'a Value),
