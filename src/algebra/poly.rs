@@ -913,6 +913,11 @@ impl Ranked<'_> {
         monomial_of(&self.bases, factors)
     }
 
+    /// The monomial of a factor list over `bases` (by rank), as a canonical sum holds it.
+    pub(crate) fn monomial_over(bases: &[Expr], factors: &[(u32, i32)]) -> Expr {
+        monomial_of(bases, factors)
+    }
+
     /// The canonical sum, [`Poly::to_expr`] of the polynomial.
     pub(crate) fn to_expr(&self) -> Expr {
         let terms: Vec<(Expr, Rational)> = self

@@ -91,8 +91,8 @@ fn is_atom(e: &Expr) -> bool {
 
 /// [`tidy_by`] of a polynomial, which is its own normal form: the conversion from an expression that
 /// [`tidy_by`] starts with (the larger part of its cost on the intermediate vectors of a sheet) is
-/// skipped, and the first pass of the contraction, the costly one, works on the polynomial's
-/// ranked terms (module `ranked`) when its atoms are symbols, sines and cosines. The same result as
+/// skipped, and the passes of the contraction work on the polynomial's ranked terms (module
+/// `ranked`) when its atoms are symbols, sines and cosines. The same result as
 /// `tidy_by(&p.to_expr(), grouping)`.
 pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
     // A single term is its own display form: no rule has two terms to merge, and the grouping
@@ -101,7 +101,7 @@ pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
         return p.to_expr();
     }
     let contracted = match p.ranked() {
-        Some(r) => ranked::contract_ranked(&r),
+        Some(r) => ranked::contract_ranked(r),
         None => contract::contract_normal(&p.to_expr()),
     };
     group(&contracted, grouping)

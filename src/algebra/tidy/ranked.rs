@@ -6,49 +6,55 @@
 //! visited in the canonical order of `(R, A, B)` by comparing ranks ([`cmp_ranked`], the order of
 //! the expressions); only merged terms and their `R` are built as expressions.
 //!
-//! A sheet's tidying starts from polynomials ([`super::tidy_poly_by`]), and the first pass over
-//! one is the costly one (every single-angle product still there): [`contract_ranked`] takes its
-//! ranked terms straight from the polynomial ([`crate::algebra::Poly::ranked`], the ranking its
-//! conversion to an expression sorts by); the other rules look for their squared cosines before
-//! taking a sum apart. Every later pass ranks the sum's bases ([`rank_sum`]).
+//! A sheet's tidying starts from polynomials ([`super::tidy_poly_by`]): [`contract_ranked`] takes
+//! their ranked terms straight from the polynomial ([`crate::algebra::Poly::ranked`], the ranking
+//! its conversion to an expression sorts by) and makes every pass of the angle-sum identities on
+//! them ([`RankedSum`]), ranking in the contracted functions (`cos(A + B)`) as they come: the sum is
+//! built as an expression once, at the end. The rules of squares look for squared cosines first;
+//! when a term holds them, the passes go on over the expression ([`super::contract::pass`]), and a
+//! pass over an expression ranks the sum's bases ([`rank_sum`]).
 
 use super::contract::{
-    contractible, is_angle, merged_term, pass, rebuild_from, Candidate, ANGLE_IDENTITIES,
-    PASS_LIMIT, TRIG_RULES,
+    is_angle, merged_term, pass, rebuild_from, Candidate, ANGLE_IDENTITIES, PASS_LIMIT,
 };
-use super::pythagoras::pythagoras;
-use super::rule::{first_change, fixpoint};
-use super::square::square_sum;
+use super::rule::fixpoint;
 use crate::algebra::expr::{Expr, Func, Kind};
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::number::Rational;
 use crate::algebra::poly::{cmp_ranked, Ranked};
 use std::collections::hash_map::Entry;
 
-/// [`super::contract::contract_normal`] of the canonical sum of `ranked`, with its first pass made
-/// on the ranked terms.
-pub(super) fn contract_ranked(ranked: &Ranked) -> Expr {
-    if !contractible_ranked(ranked) {
+/// [`super::contract::contract_normal`] of the canonical sum of `ranked`, its passes of the angle-sum
+/// identities made on ranked terms ([`RankedSum::contract`]).
+pub(super) fn contract_ranked(ranked: Ranked<'_>) -> Expr {
+    if !contractible_ranked(&ranked) {
         return ranked.to_expr();
     }
-    let e = &ranked.to_expr();
-    debug_assert!(contractible(e), "contractible as ranked terms and as a sum");
-    let first = square_sum(e)
-        .or_else(|| angle_sum_ranked(ranked, e))
-        .or_else(|| pythagoras(e));
-    debug_assert_eq!(
-        first,
-        first_change(&TRIG_RULES, e),
-        "the first pass, ranked"
-    );
-    match first {
-        Some(next) if next != *e => fixpoint(&next, PASS_LIMIT - 1, pass),
-        _ => e.clone(),
+    if !ranked.bases.iter().all(Expr::is_plain_base) {
+        return fixpoint(&ranked.to_expr(), PASS_LIMIT, pass);
     }
+    #[cfg(debug_assertions)]
+    let on_expressions = fixpoint(&ranked.to_expr(), PASS_LIMIT, pass);
+    let sum = RankedSum {
+        bases: ranked.bases,
+        terms: ranked
+            .terms
+            .into_iter()
+            .map(|(f, c)| (f, c.clone()))
+            .collect(),
+        constant: ranked.constant,
+    };
+    let contracted = sum.contract();
+    #[cfg(debug_assertions)]
+    assert_eq!(
+        contracted, on_expressions,
+        "contracted in ranks as on expressions"
+    );
+    contracted
 }
 
-/// [`contractible`] of the canonical sum of `ranked`: a term has two sines or cosines of angles
-/// (powers counted), and there are two terms.
+/// [`super::contract::contractible`] of the canonical sum of `ranked`: a term has two sines or
+/// cosines of angles (powers counted), and there are two terms.
 fn contractible_ranked(ranked: &Ranked) -> bool {
     let terms = ranked.terms.len() + usize::from(!ranked.constant.is_zero());
     terms >= 2
@@ -142,12 +148,44 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
         unreachable!("a contractible expression is a sum")
     };
     debug_assert_eq!(ts.len(), ranked.terms.len(), "the sum of the ranked terms");
+    let terms: Vec<(&[(u32, i32)], &Rational)> = ranked
+        .terms
+        .iter()
+        .map(|(f, c)| (f.as_slice(), *c))
+        .collect();
+    let mut merged = Vec::new();
+    // `R` as an expression, built once for the pairs of a group.
+    let mut rest_expr: Option<(usize, Expr)> = None;
+    let used = pair_terms(&ranked.bases, &terms, |group, rest, h, c| {
+        let r = match &rest_expr {
+            Some((g, r)) if *g == group => r,
+            _ => &rest_expr.insert((group, ranked.monomial(rest))).1,
+        };
+        merged.push(merged_term(h, c, r));
+    });
+    let kept = ts
+        .iter()
+        .zip(&used)
+        .filter(|(_, u)| !**u)
+        .map(|((t, c), _)| (t, c));
+    rebuild_from(constant.clone(), kept, merged)
+}
+
+/// The pairs that one pass of the angle-sum identities merges among `terms` (ranked factor lists
+/// over `bases` in the canonical order of their monomials, with their coefficients). For each
+/// pair, in the canonical order of `(R, A, B)`, `merge(group, R, h, c)`: the index of its group
+/// (the pairs of a group share `R`), `R`'s factors, the value `h = h(A ± B)` and the first term's
+/// coefficient `c`; the merged term is `c · h · R`. Returns which terms were merged.
+fn pair_terms<'t>(
+    bases: &[Expr],
+    terms: &[(&[(u32, i32)], &'t Rational)],
+    mut merge: impl FnMut(usize, &[(u32, i32)], &Expr, &'t Rational),
+) -> Vec<bool> {
     // The angles, by rank in the canonical order, and each base's function and angle.
-    let mut angles: Vec<&Expr> = ranked.bases.iter().filter_map(trig).map(|t| t.1).collect();
+    let mut angles: Vec<&Expr> = bases.iter().filter_map(trig).map(|t| t.1).collect();
     angles.sort();
     angles.dedup();
-    let funcs: Vec<Option<(Func, u32)>> = ranked
-        .bases
+    let funcs: Vec<Option<(Func, u32)>> = bases
         .iter()
         .map(|b| {
             trig(b).map(|(f, x)| {
@@ -158,8 +196,8 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
         .collect();
     // About two pairs of trig factors a term (sized once, not grown pass by pass).
     let mut buckets: FxHashMap<Key, Vec<Candidate>> =
-        FxHashMap::with_capacity_and_hasher(2 * ranked.terms.len(), Default::default());
-    for (index, (factors, coeff)) in ranked.terms.iter().enumerate() {
+        FxHashMap::with_capacity_and_hasher(2 * terms.len(), Default::default());
+    for (index, &(factors, coeff)) in terms.iter().enumerate() {
         let trig: Vec<(usize, Func, u32)> = factors
             .iter()
             .enumerate()
@@ -204,12 +242,10 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
             .then(x.1.cmp(&y.1))
             .then(x.2.cmp(&y.2))
     });
-    let mut used = vec![false; ts.len()];
-    let mut merged = Vec::new();
+    let mut used = vec![false; terms.len()];
     // The values `h(A ± B)` met in this pass, by identity and angles.
     let mut values: FxHashMap<(usize, u32, u32), Expr> = FxHashMap::default();
-    for ((rest, a, b), cands) in &groups {
-        let mut rest_expr: Option<Expr> = None;
+    for (group, ((rest, a, b), cands)) in groups.iter().enumerate() {
         for (x, p) in cands.iter().enumerate() {
             for q in &cands[x + 1..] {
                 if used[p.index] || used[q.index] || p.index == q.index {
@@ -223,20 +259,231 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
                     let h = values
                         .entry((k, *a, *b))
                         .or_insert_with(|| id.value(angles[*a as usize], angles[*b as usize]));
-                    let r = rest_expr.get_or_insert_with(|| ranked.monomial(rest));
-                    merged.push(merged_term(h, c, r));
+                    merge(group, rest, h, c);
                     used[p.index] = true;
                     used[q.index] = true;
                 }
             }
         }
     }
-    let kept = ts
-        .iter()
-        .zip(&used)
-        .filter(|(_, u)| !**u)
-        .map(|((t, c), _)| (t, c));
-    rebuild_from(constant.clone(), kept, merged)
+    used
+}
+
+/// A sum's terms over ranked bases, owned: what [`contract_ranked`] passes over until no identity
+/// applies, the merged angles (`cos(A + B)`) ranked in among the bases as they come. Its bases are
+/// plain ([`Expr::is_plain_base`]), so its canonical sum is built from the ranks as they stand.
+struct RankedSum {
+    /// The bases, by rank (a base no term holds any more may stay: it orders nothing differently).
+    bases: Vec<Expr>,
+    /// The terms other than the constant, in the canonical order of their monomials (as
+    /// [`Ranked::terms`]).
+    terms: Vec<Term>,
+    /// The constant term.
+    constant: Rational,
+}
+
+/// A term of a [`RankedSum`]: its factors by rank and its coefficient.
+type Term = (Vec<(u32, i32)>, Rational);
+
+/// A term a pass merged: `R`'s factors by rank, its value's base (an index among the pass's
+/// distinct values) and its coefficient.
+type Merged = (Vec<(u32, i32)>, usize, Rational);
+
+/// What one pass in ranks came to.
+enum Pass {
+    /// No pair merged: the pass is a fixpoint.
+    Unchanged,
+    /// Pairs merged: the sum holds the pass's result.
+    Changed,
+    /// A merged value is not a plain base with a coefficient: the pass is left to the expressions
+    /// (the sum is as it was).
+    Unranked,
+}
+
+impl RankedSum {
+    /// The canonical sum.
+    fn to_expr(&self) -> Expr {
+        let terms: Vec<(Expr, Rational)> = self
+            .terms
+            .iter()
+            .map(|(factors, c)| (Ranked::monomial_over(&self.bases, factors), c.clone()))
+            .collect();
+        Expr::sum_of_sorted_monomials(self.constant.clone(), terms)
+    }
+
+    /// Whether a term holds squared cosines of angles, at least `count` of them: what the rules
+    /// of squares ([`super::square::square_sum`], two in a term) and
+    /// [`super::pythagoras::pythagoras`] (one) start from.
+    fn squared_cosines(&self, count: usize) -> bool {
+        let cosine: Vec<bool> = self
+            .bases
+            .iter()
+            .map(|b| matches!(trig(b), Some((Func::Cos, _))))
+            .collect();
+        self.terms.iter().any(|(factors, _)| {
+            factors
+                .iter()
+                .filter(|&&(r, k)| k >= 2 && cosine[r as usize])
+                .count()
+                >= count
+        })
+    }
+
+    /// [`super::contract::contract_normal`] of the canonical sum: passes of the angle-sum
+    /// identities made in ranks while no rule of squares may apply, the rest (and a pass whose
+    /// merged value is not a base) by the passes on expressions.
+    fn contract(mut self) -> Expr {
+        let mut passes = 0;
+        while passes < PASS_LIMIT {
+            // A pass tries the square of an angle sum first: a term with two squared cosines may
+            // start one.
+            if self.squared_cosines(2) {
+                return fixpoint(&self.to_expr(), PASS_LIMIT - passes, pass);
+            }
+            match self.angle_pass() {
+                Pass::Changed => passes += 1,
+                Pass::Unchanged => break,
+                Pass::Unranked => return fixpoint(&self.to_expr(), PASS_LIMIT - passes, pass),
+            }
+        }
+        // No angle sum left: Pythagoras, if a squared cosine is there.
+        if passes < PASS_LIMIT && self.squared_cosines(1) {
+            return fixpoint(&self.to_expr(), PASS_LIMIT - passes, pass);
+        }
+        self.to_expr()
+    }
+
+    /// One pass of the angle-sum identities ([`pair_terms`]), the merged terms `c · h · R` put in
+    /// their places among the kept ones (equal monomials added, zeros dropped).
+    fn angle_pass(&mut self) -> Pass {
+        let terms: Vec<(&[(u32, i32)], &Rational)> =
+            self.terms.iter().map(|(f, c)| (f.as_slice(), c)).collect();
+        // Each merged term: R, its base h (with its sign) as an index among the distinct `hs`,
+        // and its coefficient. A pass meets few distinct values, each the same expression for
+        // all its pairs (so equal at the first look, the pointer).
+        let mut merged: Vec<Merged> = Vec::new();
+        let mut hs: Vec<Expr> = Vec::new();
+        let mut unranked = false;
+        let used = pair_terms(&self.bases, &terms, |_, rest, h, c| match signed_base(h) {
+            Some((sign, base)) => {
+                let i = match hs.iter().position(|x| x == base) {
+                    Some(i) => i,
+                    None => {
+                        hs.push(base.clone());
+                        hs.len() - 1
+                    }
+                };
+                merged.push((rest.to_vec(), i, c * &sign));
+            }
+            None => unranked = true,
+        });
+        if unranked {
+            return Pass::Unranked;
+        }
+        if merged.is_empty() {
+            return Pass::Unchanged;
+        }
+        // The merged angles' functions not among the bases yet, ranked in (every rank after one
+        // moves up by the bases put before it).
+        let mut fresh: Vec<Expr> = hs
+            .iter()
+            .filter(|b| self.bases.binary_search(b).is_err())
+            .cloned()
+            .collect();
+        drop(terms);
+        fresh.sort();
+        fresh.dedup();
+        if !fresh.is_empty() {
+            let mut bases: Vec<Expr> = Vec::with_capacity(self.bases.len() + fresh.len());
+            let mut remap: Vec<u32> = Vec::with_capacity(self.bases.len());
+            let mut fresh = fresh.into_iter().peekable();
+            for b in std::mem::take(&mut self.bases) {
+                while let Some(f) = fresh.next_if(|f| *f < b) {
+                    bases.push(f);
+                }
+                remap.push(bases.len() as u32);
+                bases.push(b);
+            }
+            bases.extend(fresh);
+            self.bases = bases;
+            for (f, _) in &mut self.terms {
+                for x in f.iter_mut() {
+                    x.0 = remap[x.0 as usize];
+                }
+            }
+            for (rest, _, _) in &mut merged {
+                for x in rest.iter_mut() {
+                    x.0 = remap[x.0 as usize];
+                }
+            }
+        }
+        let ranks: Vec<u32> = hs
+            .iter()
+            .map(|h| self.bases.binary_search(h).expect("ranked in above") as u32)
+            .collect();
+        let mut new: Vec<Term> = merged
+            .into_iter()
+            .map(|(mut f, h, c)| {
+                let r = ranks[h];
+                match f.binary_search_by_key(&r, |&(s, _)| s) {
+                    Ok(i) if f[i].1 == -1 => {
+                        f.remove(i);
+                    }
+                    Ok(i) => f[i].1 += 1,
+                    Err(i) => f.insert(i, (r, 1)),
+                }
+                (f, c)
+            })
+            .collect();
+        new.sort_by(|x, y| cmp_ranked(&x.0, &y.0));
+        // The kept terms keep their order (ranks moved up in order), the merged ones go in
+        // between, equal monomials added.
+        let mut constant = std::mem::take(&mut self.constant);
+        let mut out: Vec<Term> = Vec::with_capacity(self.terms.len());
+        let mut push = |out: &mut Vec<Term>, (f, c): Term| {
+            if f.is_empty() {
+                constant += &c;
+                return;
+            }
+            match out.last_mut() {
+                Some((last, sum)) if *last == f => *sum += &c,
+                _ => {
+                    if out.last().is_some_and(|(_, sum)| sum.is_zero()) {
+                        out.pop();
+                    }
+                    out.push((f, c));
+                }
+            }
+        };
+        let mut new = new.into_iter().peekable();
+        let old = std::mem::take(&mut self.terms);
+        for (term, _) in old.into_iter().zip(&used).filter(|(_, u)| !**u) {
+            while let Some(n) = new.next_if(|(n, _)| cmp_ranked(n, &term.0).is_lt()) {
+                push(&mut out, n);
+            }
+            push(&mut out, term);
+        }
+        for n in new {
+            push(&mut out, n);
+        }
+        if out.last().is_some_and(|(_, c)| c.is_zero()) {
+            out.pop();
+        }
+        self.terms = out;
+        self.constant = constant;
+        Pass::Changed
+    }
+}
+
+/// `h` as a coefficient and a plain base (`sin(q1 + q2)`, `−sin(q1 − q2)`), if it is one.
+fn signed_base(h: &Expr) -> Option<(Rational, &Expr)> {
+    match h.kind() {
+        Kind::Fun(..) => Some((Rational::one(), h)),
+        Kind::Mul(k, fs) if fs.len() == 1 && fs[0].1 == 1 && fs[0].0.is_plain_base() => {
+            Some((k.clone(), &fs[0].0))
+        }
+        _ => None,
+    }
 }
 
 #[cfg(test)]
@@ -245,12 +492,26 @@ mod tests {
     use crate::algebra::tidy::contract::contract_normal;
     use crate::algebra::tidy::testing::{example_components, example_derivations};
 
+    /// The ranked sum of a polynomial's ranked terms.
+    fn owned(ranked: &Ranked) -> RankedSum {
+        RankedSum {
+            bases: ranked.bases.clone(),
+            terms: ranked
+                .terms
+                .iter()
+                .map(|(f, c)| (f.clone(), (*c).clone()))
+                .collect(),
+            constant: ranked.constant.clone(),
+        }
+    }
+
     /// On the Newton–Euler vectors (both frames) and the inertia matrices of the example scenes,
-    /// the contraction from ranked terms is the contraction of the expression: sums passed over,
-    /// sums contracted over several passes, and sums the first pass leaves to Pythagoras.
+    /// the contraction on ranked terms is the contraction of the expression: sums passed over,
+    /// sums contracted over several passes in ranks (each pass's sum the canonical sum of its
+    /// ranks), and sums the passes leave to Pythagoras.
     #[test]
-    fn the_ranked_first_pass_contracts_as_the_expression_does() {
-        let (mut passed, mut contracted, mut total) = (0, 0, 0);
+    fn the_ranked_passes_contract_as_the_expression_does() {
+        let (mut passed, mut contracted, mut total, mut in_ranks) = (0, 0, 0, 0);
         let names = ["elbow", "rpp", "scara", "stanford", "puma560"];
         let mut polys = example_components(&names);
         for der in example_derivations(&names) {
@@ -260,15 +521,30 @@ mod tests {
             let ranked = p.ranked().expect("symbols, sines and cosines");
             let e = p.to_expr();
             assert_eq!(ranked.to_expr(), e, "{e:?}");
-            let got = contract_ranked(&ranked);
+            // Pass by pass in ranks, each pass the expressions' pass of the sum before it.
+            let mut sum = owned(&ranked);
+            let mut ranked_passes = 0;
+            while !sum.squared_cosines(2) {
+                let before = sum.to_expr();
+                match sum.angle_pass() {
+                    Pass::Changed => {
+                        assert_eq!(Some(sum.to_expr()), pass(&before), "{before:?}");
+                        ranked_passes += 1;
+                    }
+                    Pass::Unchanged | Pass::Unranked => break,
+                }
+            }
+            in_ranks += usize::from(ranked_passes >= 2);
+            passed += usize::from(!contractible_ranked(&ranked));
+            let got = contract_ranked(ranked);
             assert_eq!(got, contract_normal(&e), "{e:?}");
             total += 1;
-            passed += usize::from(!contractible_ranked(&ranked));
             contracted += usize::from(got != e);
         }
         assert!(
-            passed > 50 && contracted > 100 && passed + contracted + 20 < total,
-            "{passed} passed over, {contracted} contracted, of {total}"
+            passed > 50 && contracted > 100 && passed + contracted + 20 < total && in_ranks >= 4,
+            "{passed} passed over, {contracted} contracted ({in_ranks} over two passes in ranks), \
+             of {total}"
         );
     }
 }
