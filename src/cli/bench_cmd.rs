@@ -114,7 +114,8 @@ struct Outcome {
 
 /// Runs `cmd` with a hard time limit and a memory limit, polling its peak memory: a child whose
 /// peak passes `max_kib` is killed (an expanded derivation of a long chain grows by gigabytes a
-/// second; the 12-joint chain's Euler–Lagrange passed 16 GiB within its minute).
+/// second; the 12-joint chain's Euler–Lagrange passed 16 GiB within its minute). A killed child's
+/// own children are killed with it ([`kill_tree`]).
 fn run_limited(mut cmd: Command, limit: f64, max_kib: u64) -> std::io::Result<Outcome> {
     cmd.stdin(Stdio::null())
         .stdout(Stdio::piped())
@@ -155,7 +156,7 @@ fn run_limited(mut cmd: Command, limit: f64, max_kib: u64) -> std::io::Result<Ou
         }
         over_memory = peak.is_some_and(|p| p >= max_kib);
         if over_memory || start.elapsed().as_secs_f64() >= limit {
-            let _ = child.kill();
+            kill_tree(&mut child);
             let _ = child.wait();
             break None;
         }
@@ -171,6 +172,49 @@ fn run_limited(mut cmd: Command, limit: f64, max_kib: u64) -> std::io::Result<Ou
         seconds,
         peak_kib: peak,
     })
+}
+
+/// Kills `child` and the processes it started, and theirs: one it started (a wrapper's
+/// interpreter) would otherwise hold the output pipes open, and the run would wait for it. They
+/// are found before the child dies (`/proc/<pid>/task/<tid>/children`, on Linux; elsewhere only
+/// the child is killed). The child stays in the terminal's process group, so an interrupted bench
+/// interrupts it too.
+fn kill_tree(child: &mut std::process::Child) {
+    let descendants = descendants(child.id());
+    let _ = child.kill();
+    #[cfg(unix)]
+    for pid in descendants {
+        if let Ok(pid) = libc::pid_t::try_from(pid) {
+            // SAFETY: `kill` only sends a signal, to a process found among the child's.
+            unsafe {
+                libc::kill(pid, libc::SIGKILL);
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    drop(descendants);
+}
+
+/// The processes `pid` started, and theirs, as `/proc` lists them (none where it does not).
+fn descendants(pid: u32) -> Vec<u32> {
+    let mut found = Vec::new();
+    let mut todo = vec![pid];
+    while let Some(p) = todo.pop() {
+        let Ok(tasks) = std::fs::read_dir(format!("/proc/{p}/task")) else {
+            continue;
+        };
+        for task in tasks.flatten() {
+            let children =
+                std::fs::read_to_string(task.path().join("children")).unwrap_or_default();
+            for c in children.split_whitespace().filter_map(|c| c.parse().ok()) {
+                if !found.contains(&c) && c != pid {
+                    found.push(c);
+                    todo.push(c);
+                }
+            }
+        }
+    }
+    found
 }
 
 fn last_line(s: &str) -> String {
@@ -1121,6 +1165,20 @@ mod tests {
         assert_eq!(within.stdout.trim(), "40000000");
         let slow = run_limited(holding_40_mb(20), 0.5, 1 << 30).unwrap();
         assert!(slow.code.is_none() && !slow.over_memory);
+    }
+
+    /// A child whose own child holds the output pipe (a shell that started `sleep` in the
+    /// background) is ended at the time limit with it: the run does not wait for the grandchild.
+    #[cfg(unix)]
+    #[test]
+    fn a_child_is_killed_with_the_processes_it_started() {
+        let mut cmd = Command::new("sh");
+        cmd.arg("-c").arg("sleep 30 & wait");
+        let start = Instant::now();
+        let run = run_limited(cmd, 0.3, 1 << 30).unwrap();
+        let waited = start.elapsed().as_secs_f64();
+        assert!(run.code.is_none() && !run.over_memory);
+        assert!(waited < 10.0, "waited for the grandchild: {waited} s");
     }
 
     /// Every status reads back from its name (the CSV's), the memory limit's included.
