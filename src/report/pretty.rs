@@ -69,70 +69,146 @@ pub fn doc_to_pretty(doc: &Doc) -> String {
     out.buf
 }
 
-/// [`doc_to_pretty`] and a line end, written to `sink` a piece at a time through one small buffer
-/// (long strings straight from the document), so a document of megabytes is never copied whole.
+/// [`doc_to_pretty`] and a line end, written to `sink` a piece at a time: the document's long
+/// strings straight from where they are (gathered into vectored writes with the short text between
+/// them, which goes through one small buffer), so a document of megabytes is never copied.
 pub fn write_pretty(doc: &Doc, sink: &mut dyn std::io::Write) -> std::io::Result<()> {
     let mut out = Out {
         buf: String::with_capacity(2 * CHUNK),
-        sink: Some((sink, None)),
+        sink: Some(Sink {
+            to: sink,
+            error: None,
+            pieces: Vec::with_capacity(MAX_PIECES),
+            run: 0,
+        }),
     };
     write(&mut out, doc, 0);
     out.buf.push('\n');
     out.flush();
     match out.sink {
-        Some((_, Some(e))) => Err(e),
+        Some(Sink { error: Some(e), .. }) => Err(e),
         _ => Ok(()),
     }
 }
 
-/// The size of the pieces [`write_pretty`] writes.
+/// The size of the buffer's text at which [`write_pretty`] writes.
 const CHUNK: usize = 1 << 16;
 
-/// Where the text goes: a string, or a sink fed from a buffer (with the first error it gave, after
-/// which nothing more is written).
-struct Out<'w> {
+/// The most pieces [`write_pretty`] gathers into one write (the systems' limit is 1024 or more).
+const MAX_PIECES: usize = 512;
+
+/// The length from which a string of the document is written from where it is, not copied into
+/// the buffer.
+const LONG: usize = 256;
+
+/// Where the text goes: a string, or a sink fed in vectored writes.
+struct Out<'w, 'd> {
     buf: String,
-    sink: Option<(&'w mut dyn std::io::Write, Option<std::io::Error>)>,
+    sink: Option<Sink<'w, 'd>>,
 }
 
-impl Out<'_> {
+/// A sink and what is due to be written to it.
+struct Sink<'w, 'd> {
+    to: &'w mut dyn std::io::Write,
+    /// The first error the sink gave, after which nothing more is written.
+    error: Option<std::io::Error>,
+    /// What is due, in order: runs of the buffer and long strings of the document.
+    pieces: Vec<Piece<'d>>,
+    /// Where the run of the buffer not among `pieces` yet starts.
+    run: usize,
+}
+
+/// A piece of the text due to be written.
+enum Piece<'d> {
+    /// Bytes of the buffer.
+    Buffered(std::ops::Range<usize>),
+    /// A string of the document.
+    Borrowed(&'d str),
+}
+
+impl<'d> Out<'_, 'd> {
     fn push(&mut self, c: char) {
         self.buf.push(c);
     }
 
+    /// Text made here (escaped strings, numbers), copied.
     fn push_str(&mut self, s: &str) {
+        self.buf.push_str(s);
+        self.due();
+    }
+
+    /// Text of the document: a long string is written from where it is.
+    fn push_borrowed(&mut self, s: &'d str) {
         match &mut self.sink {
-            Some(_) if s.len() >= CHUNK => {
+            Some(sink) if s.len() >= LONG => {
+                sink.close_run(&self.buf);
+                sink.pieces.push(Piece::Borrowed(s));
+                self.due();
+            }
+            _ => self.push_str(s),
+        }
+    }
+
+    /// Writes what is due when the buffer or the pieces are full.
+    fn due(&mut self) {
+        if let Some(sink) = &self.sink {
+            if self.buf.len() >= CHUNK || sink.pieces.len() >= MAX_PIECES {
                 self.flush();
-                self.emit(s);
             }
-            Some(_) => {
-                self.buf.push_str(s);
-                if self.buf.len() >= CHUNK {
-                    self.flush();
-                }
-            }
-            None => self.buf.push_str(s),
         }
     }
 
-    /// Writes the buffer to the sink (if there is one) and empties it.
+    /// Writes everything due to the sink (if there is one) and empties the buffer.
     fn flush(&mut self) {
-        if self.sink.is_some() {
-            let buf = std::mem::take(&mut self.buf);
-            self.emit(&buf);
-            self.buf = buf;
-            self.buf.clear();
-        }
-    }
-
-    fn emit(&mut self, s: &str) {
-        if let Some((sink, err @ None)) = &mut self.sink {
-            if let Err(e) = sink.write_all(s.as_bytes()) {
-                *err = Some(e);
+        let Some(sink) = &mut self.sink else {
+            return;
+        };
+        sink.close_run(&self.buf);
+        if sink.error.is_none() {
+            let buf = &self.buf;
+            let mut slices: Vec<std::io::IoSlice> = sink
+                .pieces
+                .iter()
+                .map(|p| match p {
+                    Piece::Buffered(r) => std::io::IoSlice::new(&buf.as_bytes()[r.clone()]),
+                    Piece::Borrowed(s) => std::io::IoSlice::new(s.as_bytes()),
+                })
+                .collect();
+            if let Err(e) = write_all_vectored(&mut *sink.to, &mut slices) {
+                sink.error = Some(e);
             }
         }
+        sink.pieces.clear();
+        sink.run = 0;
+        self.buf.clear();
     }
+}
+
+impl Sink<'_, '_> {
+    /// Puts the buffer's text since the last piece among the pieces.
+    fn close_run(&mut self, buf: &str) {
+        if buf.len() > self.run {
+            self.pieces.push(Piece::Buffered(self.run..buf.len()));
+            self.run = buf.len();
+        }
+    }
+}
+
+/// Writes every byte of `slices` to `sink`, in as few writes as it takes.
+fn write_all_vectored(
+    sink: &mut dyn std::io::Write,
+    mut slices: &mut [std::io::IoSlice],
+) -> std::io::Result<()> {
+    std::io::IoSlice::advance_slices(&mut slices, 0);
+    while !slices.is_empty() {
+        match sink.write_vectored(slices) {
+            Ok(0) => return Err(std::io::ErrorKind::WriteZero.into()),
+            Ok(n) => std::io::IoSlice::advance_slices(&mut slices, n),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(())
 }
 
 /// An upper estimate of the text's length at `depth` (strings, their quotes and separators, and
@@ -169,10 +245,10 @@ pub fn plain(s: &str) -> bool {
 }
 
 /// A string as a JSON string literal.
-fn write_str(out: &mut Out, s: &str) {
+fn write_str<'d>(out: &mut Out<'_, 'd>, s: &'d str) {
     if plain(s) {
         out.push('"');
-        out.push_str(s);
+        out.push_borrowed(s);
         out.push('"');
     } else {
         out.push_str(&serde_json::to_string(s).expect("a string serialises"));
@@ -187,13 +263,13 @@ fn newline(out: &mut Out, depth: usize) {
     }
 }
 
-fn write(out: &mut Out, doc: &Doc, depth: usize) {
+fn write<'d>(out: &mut Out<'_, 'd>, doc: &Doc<'d>, depth: usize) {
     match doc {
         Doc::Str(s) => write_str(out, s),
         Doc::Known(s, true) => {
             debug_assert!(plain(s), "a string checked plain");
             out.push('"');
-            out.push_str(s);
+            out.push_borrowed(s);
             out.push('"');
         }
         Doc::Known(s, false) => write_str(out, s),
@@ -281,7 +357,7 @@ mod tests {
 
     #[test]
     fn a_document_written_in_pieces_is_its_text_and_a_line_end() {
-        // Strings longer than a piece go straight to the sink, shorter ones through the buffer.
+        // Strings longer than the buffer, short ones, and enough of them to fill it.
         let long = "m1*g + ".repeat(CHUNK / 4);
         let many: Vec<String> = (0..3 * CHUNK / 16).map(|i| format!("q{i}")).collect();
         let doc = Doc::Obj(vec![
@@ -302,6 +378,49 @@ mod tests {
         let mut written: Vec<u8> = Vec::new();
         write_pretty(&doc, &mut written).expect("a vector takes everything");
         let text = String::from_utf8(written).expect("UTF-8");
+        assert_eq!(text, format!("{}\n", doc_to_pretty(&doc)));
+        assert_eq!(
+            text.trim_end(),
+            serde_json::to_string_pretty(&Value::from(&doc)).expect("JSON")
+        );
+    }
+
+    /// A sink that takes at most a few bytes a call, from the first slice of a vectored write.
+    struct Trickle(Vec<u8>);
+
+    impl std::io::Write for Trickle {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            let n = buf.len().min(5);
+            self.0.extend_from_slice(&buf[..n]);
+            Ok(n)
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    /// Long strings written from the document, short ones and the punctuation from the buffer,
+    /// more pieces than one vectored write gathers, to a sink that takes a few bytes at a time:
+    /// every byte arrives, in order.
+    #[test]
+    fn a_document_written_in_vectored_pieces_arrives_whole() {
+        let long: Vec<String> = (0..3 * MAX_PIECES)
+            .map(|i| format!("m{i}*g + ").repeat(LONG / 6 + i % 3))
+            .collect();
+        let doc = Doc::Arr(
+            long.iter()
+                .enumerate()
+                .map(|(i, s)| match i % 4 {
+                    0 => Doc::Str(s),
+                    1 => Doc::Known(s, true),
+                    2 => Doc::Str(&s[..LONG - 1]),
+                    _ => Doc::Str("a \"quoted\" one"),
+                })
+                .collect(),
+        );
+        let mut sink = Trickle(Vec::new());
+        write_pretty(&doc, &mut sink).expect("a vector takes everything");
+        let text = String::from_utf8(sink.0).expect("UTF-8");
         assert_eq!(text, format!("{}\n", doc_to_pretty(&doc)));
         assert_eq!(
             text.trim_end(),
