@@ -1,7 +1,9 @@
-//! Criterion benchmarks of the algebra core: large trig polynomials, products of sums, derivatives.
+//! Criterion benchmarks of the algebra core: large trig polynomials, products of sums, derivatives,
+//! and the display forms of a sheet's Newton–Euler vectors.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use symdyn::algebra::calculus::poly_diff;
+use symdyn::algebra::tidy::{tidy_poly_by, Grouping};
 use symdyn::algebra::{diff, expand, normal_form, to_poly, Expr, Symbol};
 
 /// `Π_{i=1..n} (cos q_i + sin q_i + l_i)`: a dense trig polynomial of 3^n terms.
@@ -45,6 +47,46 @@ fn bench(c: &mut Criterion) {
         "∂/∂q3 of the expanded trig product (normal form)",
         |b| b.iter(|| poly_diff(black_box(&poly), &q3)),
     );
+    // The display forms of a sheet's Newton–Euler vectors: the contraction of angle sums on ranked
+    // terms each time (the grouping after it is remembered after the first time).
+    let components = scara_components();
+    c.bench_function(
+        "tidy the SCARA arm's Newton–Euler components (both frames)",
+        |b| {
+            b.iter(|| {
+                for p in &components {
+                    black_box(tidy_poly_by(black_box(p), Grouping::Leading));
+                }
+            })
+        },
+    );
+}
+
+/// The components of two or more terms of the SCARA arm's Newton–Euler vectors, both frames.
+fn scara_components() -> Vec<symdyn::algebra::Poly> {
+    let path = format!("{}/examples/scara.scene", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("example scene");
+    let robot = symdyn::parse::parse_scene(&text)
+        .expect("example parses")
+        .robot;
+    let der = symdyn::dynamics::Derivation::new(robot).expect("a valid robot");
+    let mut out = Vec::new();
+    for frame in [
+        symdyn::dynamics::Frame::Body,
+        symdyn::dynamics::Frame::Inertial,
+    ] {
+        let ne = der.newton_euler(frame);
+        let vectors = ne
+            .omega
+            .iter()
+            .chain(&ne.alpha)
+            .chain(&ne.a_c)
+            .chain(&ne.a_e);
+        for v in vectors.chain(&ne.f).chain(ne.n.iter().flatten()) {
+            out.extend(v.0.iter().filter(|c| c.len() >= 2).cloned());
+        }
+    }
+    out
 }
 
 criterion_group!(benches, bench);
