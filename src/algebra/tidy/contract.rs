@@ -181,16 +181,24 @@ impl AngleIdentity {
 /// place among `R`'s factors ([`Expr::monomial_times_base`]) when they are the normal form's, by
 /// [`Expr::product`] otherwise; the same expression either way.
 pub(super) fn merged_term(h: &Expr, c: &Rational, rest: &Expr) -> Expr {
-    let (sign, base) = match h.kind() {
-        Kind::Fun(..) => (Rational::one(), h),
-        Kind::Mul(k, fs) if fs.len() == 1 && fs[0].1 == 1 && fs[0].0.is_plain_base() => {
-            (k.clone(), &fs[0].0)
-        }
-        _ => return h.scale(c) * rest,
+    let Some((sign, base)) = signed_base(h) else {
+        return h.scale(c) * rest;
     };
     let fast = rest.monomial_times_base(base, &(c * &sign));
     debug_assert!(fast.as_ref().is_none_or(|m| *m == h.scale(c) * rest));
     fast.unwrap_or_else(|| h.scale(c) * rest)
+}
+
+/// `h` as a coefficient and a plain base (`sin(q1 + q2)`, `−sin(q1 − q2)`), if it is one: the
+/// value of an angle sum as a merged term takes it.
+pub(super) fn signed_base(h: &Expr) -> Option<(Rational, &Expr)> {
+    match h.kind() {
+        Kind::Fun(..) => Some((Rational::one(), h)),
+        Kind::Mul(k, fs) if fs.len() == 1 && fs[0].1 == 1 && fs[0].0.is_plain_base() => {
+            Some((k.clone(), &fs[0].0))
+        }
+        _ => None,
+    }
 }
 
 /// Whether the normal form expands `sin`/`cos` of `e` exactly: a non-zero integer combination of

@@ -15,7 +15,7 @@
 //! pass over an expression ranks the sum's bases ([`rank_sum`]).
 
 use super::contract::{
-    is_angle, merged_term, pass, rebuild_from, Candidate, ANGLE_IDENTITIES, PASS_LIMIT,
+    is_angle, merged_term, pass, rebuild_from, signed_base, Candidate, ANGLE_IDENTITIES, PASS_LIMIT,
 };
 use super::rule::fixpoint;
 use crate::algebra::expr::{Expr, Func, Kind};
@@ -35,16 +35,7 @@ pub(super) fn contract_ranked(ranked: Ranked<'_>) -> Expr {
     }
     #[cfg(debug_assertions)]
     let on_expressions = fixpoint(&ranked.to_expr(), PASS_LIMIT, pass);
-    let sum = RankedSum {
-        bases: ranked.bases,
-        terms: ranked
-            .terms
-            .into_iter()
-            .map(|(f, c)| (f, c.clone()))
-            .collect(),
-        constant: ranked.constant,
-    };
-    let contracted = sum.contract();
+    let contracted = RankedSum::of(ranked).contract();
     #[cfg(debug_assertions)]
     assert_eq!(
         contracted, on_expressions,
@@ -301,6 +292,19 @@ enum Pass {
 }
 
 impl RankedSum {
+    /// The terms of `ranked`, owned.
+    fn of(ranked: Ranked) -> RankedSum {
+        RankedSum {
+            bases: ranked.bases,
+            terms: ranked
+                .terms
+                .into_iter()
+                .map(|(f, c)| (f, c.clone()))
+                .collect(),
+            constant: ranked.constant,
+        }
+    }
+
     /// The canonical sum.
     fn to_expr(&self) -> Expr {
         let terms: Vec<(Expr, Rational)> = self
@@ -475,35 +479,11 @@ impl RankedSum {
     }
 }
 
-/// `h` as a coefficient and a plain base (`sin(q1 + q2)`, `−sin(q1 − q2)`), if it is one.
-fn signed_base(h: &Expr) -> Option<(Rational, &Expr)> {
-    match h.kind() {
-        Kind::Fun(..) => Some((Rational::one(), h)),
-        Kind::Mul(k, fs) if fs.len() == 1 && fs[0].1 == 1 && fs[0].0.is_plain_base() => {
-            Some((k.clone(), &fs[0].0))
-        }
-        _ => None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::algebra::tidy::contract::contract_normal;
     use crate::algebra::tidy::testing::{example_components, example_derivations};
-
-    /// The ranked sum of a polynomial's ranked terms.
-    fn owned(ranked: &Ranked) -> RankedSum {
-        RankedSum {
-            bases: ranked.bases.clone(),
-            terms: ranked
-                .terms
-                .iter()
-                .map(|(f, c)| (f.clone(), (*c).clone()))
-                .collect(),
-            constant: ranked.constant.clone(),
-        }
-    }
 
     /// On the Newton–Euler vectors (both frames) and the inertia matrices of the example scenes,
     /// the contraction on ranked terms is the contraction of the expression: sums passed over,
@@ -522,7 +502,7 @@ mod tests {
             let e = p.to_expr();
             assert_eq!(ranked.to_expr(), e, "{e:?}");
             // Pass by pass in ranks, each pass the expressions' pass of the sum before it.
-            let mut sum = owned(&ranked);
+            let mut sum = RankedSum::of(p.ranked().expect("ranked above"));
             let mut ranked_passes = 0;
             while !sum.squared_cosines(2) {
                 let before = sum.to_expr();
