@@ -247,13 +247,13 @@ pub fn side_text_of_parts_lent(
     lent: &[Option<Lent>],
     style: Style,
 ) -> Option<String> {
-    let (ranks, terms) = parts_ranks(parts)?;
+    let (ranks, _) = parts_ranks(parts)?;
+    let lent = if style == Style::Latex { &[] } else { lent };
     let mut sink = Write {
-        out: String::with_capacity(48 * terms),
+        out: String::with_capacity(side_capacity(parts, lent)),
         frames: vec![Frame::default()],
         style,
     };
-    let lent = if style == Style::Latex { &[] } else { lent };
     if !lay_out_parts(parts, lent, &ranks, style, &mut sink) {
         return None;
     }
@@ -262,6 +262,30 @@ pub fn side_text_of_parts_lent(
     }
     Some(sink.out)
 }
+
+/// About the length of the text of the side `Σ_i p_i · m_i`, and mostly above it, so that it is
+/// written into one string sized once (a string that grows is copied at each doubling, into memory
+/// touched for the first time: megabytes for a large robot). A part with a lent text takes that
+/// text's length and room for a multiplier and a sign per term; another part [`UNLENT_TERM`] per
+/// term.
+fn side_capacity(parts: &[(&Poly, &[(AtomId, i32)])], lent: &[Option<Lent>]) -> usize {
+    parts
+        .iter()
+        .enumerate()
+        .map(|(i, (p, _))| match lent.get(i).copied().flatten() {
+            Some(l) => l.texts.text.len() + LENT_TERM * p.len(),
+            None => UNLENT_TERM * p.len(),
+        })
+        .sum::<usize>()
+        + 16
+}
+
+/// The room [`side_capacity`] gives a term of a part with a lent text besides that text: its
+/// multiplier (`*qd1*qd2`), a number (`2*`) and brackets.
+const LENT_TERM: usize = 16;
+
+/// The room [`side_capacity`] gives a term of a part printed afresh.
+const UNLENT_TERM: usize = 96;
 
 /// The display terms of `p` (whose atoms `ranks` ranks) given to `sink` in order.
 ///

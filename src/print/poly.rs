@@ -290,6 +290,10 @@ pub struct Measure {
 /// The powers `1..=DENSE_POWERS` of a rank have a slot each in [`Renderer`]'s table.
 const DENSE_POWERS: i32 = 4;
 
+/// The length [`Renderer::text_bound`] allows a factor that is not rendered yet (`sin(q2)^2` is
+/// 9 bytes, `\sin^{2}\theta_{2}` 17).
+const UNRENDERED: usize = 24;
+
 /// Appends the decimal digits of `n`; their number is their width.
 fn push_u64(out: &mut String, n: u64) -> usize {
     let mut digits = itoa::Buffer::new();
@@ -877,7 +881,7 @@ impl<'a> Renderer<'a> {
             return "0".to_string();
         }
         // Not nested: always spaced, so every term is written straight into the text.
-        let mut out = String::with_capacity(8 * buf.len() + 8 * terms.len());
+        let mut out = String::with_capacity(self.text_bound(buf, &terms));
         for (i, t) in terms.iter().enumerate() {
             self.push_sign(&mut out, i == 0, t);
             let start = out.len() as u32;
@@ -889,6 +893,45 @@ impl<'a> Renderer<'a> {
             }
         }
         out
+    }
+
+    /// About the length of the sum of `terms` (ranges of `buf`) as [`Renderer::sorted_sum`] writes
+    /// it, and mostly above it: each factor as long as its rendered text (a factor not rendered
+    /// yet as long as [`UNRENDERED`]), a separator after it, and each term's sign and number as
+    /// long as [`Renderer::number_bound`] allows. The text is then written into one string sized
+    /// once: a string that grows is copied at each doubling, into memory touched for the first
+    /// time, which costs more here than the writing (megabytes for a large robot).
+    fn text_bound(&self, buf: &[(u32, i32)], terms: &[Term]) -> usize {
+        let factors: usize = buf.iter().map(|&(r, e)| self.factor_bound(r, e) + 1).sum();
+        factors + terms.iter().map(|t| self.number_bound(t.c)).sum::<usize>()
+    }
+
+    /// The length of the text of `base^exp` for the rank `rank`, if rendered (unguarded), else
+    /// [`UNRENDERED`].
+    fn factor_bound(&self, rank: u32, exp: i32) -> usize {
+        if (1..=DENSE_POWERS).contains(&exp) {
+            let at = (rank as usize * DENSE_POWERS as usize + (exp - 1) as usize) * 2;
+            if let Some(f) = self.dense.get(at).filter(|f| f.end > 0) {
+                // A guarded factor adds a thin space in LaTeX.
+                return (f.end - f.start) as usize + 2;
+            }
+        }
+        UNRENDERED
+    }
+
+    /// At least the length of a term's sign and number, and its separator: ` - ` and the digits of
+    /// numerator and denominator (each decimal digit holds more than three bits), and room for
+    /// LaTeX's `\frac{}{}`.
+    fn number_bound(&self, c: &Rational) -> usize {
+        let digits = |bits: u64| bits as usize / 3 + 1;
+        let (num, den) = match c.as_small() {
+            Some((n, d)) => (digits(64 - n.unsigned_abs().leading_zeros() as u64), {
+                digits(64 - d.unsigned_abs().leading_zeros() as u64)
+            }),
+            None => (digits(c.numer().bits()), digits(c.denom().bits())),
+        };
+        let latex = if self.style == Style::Latex { 10 } else { 0 };
+        4 + num + den + latex
     }
 
     /// Appends the magnitude of a term: copied from its lent text and its last factor, or printed.
