@@ -122,6 +122,83 @@ pub fn share(total: usize, min_total: usize, work: impl Fn() + Sync) {
     });
 }
 
+/// `f` of every item, given to `consume` on the calling thread in the items' order as soon as it
+/// and every item before it are computed: computed on up to [`threads`] threads, taken in the
+/// items' order, when `weight` sums to at least `min_total` (as for [`map`]); one by one on the
+/// calling thread otherwise, and always inside [`serially`]. A result is dropped once consumed, so
+/// only the results computed ahead of the slowest one are held at a time: for a document of
+/// megabytes written as it is printed (memory touched for the first time costs more here than the
+/// printing). The calling thread only consumes.
+pub fn map_in_order<T: Sync, R: Send>(
+    items: &[T],
+    weight: impl Fn(&T) -> usize,
+    min_total: usize,
+    f: impl Fn(&T) -> R + Sync,
+    mut consume: impl FnMut(usize, R),
+) {
+    let total: usize = items.iter().map(weight).sum();
+    let threads = threads();
+    if items.len() < 2 || total < min_total || threads < 2 || SERIAL.with(|s| s.get()) {
+        for (i, item) in items.iter().enumerate() {
+            consume(i, f(item));
+        }
+        return;
+    }
+    /// The results computed and not consumed yet, and whether a worker stopped by panicking.
+    struct Ready<R> {
+        results: Vec<Option<R>>,
+        failed: bool,
+    }
+    /// Marks the work as failed if its worker unwinds, so the consumer stops waiting.
+    struct Alarm<'s, R>(&'s (std::sync::Mutex<Ready<R>>, std::sync::Condvar));
+    impl<R> Drop for Alarm<'_, R> {
+        fn drop(&mut self) {
+            if std::thread::panicking() {
+                if let Ok(mut ready) = self.0 .0.lock() {
+                    ready.failed = true;
+                }
+                self.0 .1.notify_all();
+            }
+        }
+    }
+    let state = (
+        std::sync::Mutex::new(Ready {
+            results: (0..items.len()).map(|_| None).collect(),
+            failed: false,
+        }),
+        std::sync::Condvar::new(),
+    );
+    let next = AtomicUsize::new(0);
+    let (state, next, f) = (&state, &next, &f);
+    let work = move || {
+        let _alarm = Alarm(state);
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            let Some(item) = items.get(i) else { break };
+            let r = f(item);
+            state.0.lock().expect("a worker does not panic").results[i] = Some(r);
+            state.1.notify_all();
+        }
+    };
+    std::thread::scope(|scope| {
+        for _ in 0..threads.min(items.len()) {
+            scope.spawn(work);
+        }
+        for i in 0..items.len() {
+            let mut ready = state.0.lock().expect("a worker does not panic");
+            let r = loop {
+                if let Some(r) = ready.results[i].take() {
+                    break r;
+                }
+                assert!(!ready.failed, "a worker thread does not panic");
+                ready = state.1.wait(ready).expect("a worker does not panic");
+            };
+            drop(ready);
+            consume(i, r);
+        }
+    });
+}
+
 /// About a third of a millisecond of work (the items' weights, in units of about 3 ns): below it
 /// a job stays on the calling thread, since starting a thread costs a few hundred microseconds here.
 pub const WORTH_SHARING: usize = 100_000;
@@ -141,6 +218,50 @@ mod tests {
         // Below the threshold: on this thread, the same.
         assert_eq!(map(&items, |_| 1, usize::MAX, work), want);
         assert!(map(&[] as &[u64], |_| 1, 0, work).is_empty());
+    }
+
+    #[test]
+    fn results_are_consumed_in_the_items_order_on_the_calling_thread() {
+        let items: Vec<u64> = (0..300).collect();
+        // Uneven costs, so later items are often ready before earlier ones.
+        let work =
+            |&n: &u64| (0..(n % 5) * 3000).fold(n, |a, b| a.wrapping_mul(31).wrapping_add(b));
+        let want: Vec<(usize, u64)> = items.iter().map(work).enumerate().collect();
+        let here = std::thread::current().id();
+        for min_total in [0, usize::MAX] {
+            let mut got = Vec::new();
+            map_in_order(
+                &items,
+                |&n| n as usize,
+                min_total,
+                work,
+                |i, r| {
+                    assert_eq!(std::thread::current().id(), here, "consumed here");
+                    got.push((i, r));
+                },
+            );
+            assert_eq!(got, want, "min_total {min_total}");
+        }
+        map_in_order(&[] as &[u64], |_| 1, 0, work, |_, _| panic!("no item"));
+    }
+
+    #[test]
+    fn a_worker_that_panics_stops_the_consumer() {
+        let items: Vec<u64> = (0..64).collect();
+        let stopped = std::panic::catch_unwind(|| {
+            map_in_order(
+                &items,
+                |_| usize::MAX / 128,
+                0,
+                |&n| {
+                    assert!(n != 3, "item 3 fails");
+                    n
+                },
+                |_, _| {},
+            )
+        });
+        // Only with two or more threads does a worker run apart from the consumer.
+        assert!(stopped.is_err() || threads() < 2);
     }
 
     #[test]

@@ -13,8 +13,8 @@
 //! `mass_matrix`, `coriolis`, `christoffel`, `gravity` and `potential` come from Euler–Lagrange;
 //! `equations` and `tau` from the chosen method (they are proved equal by `symdyn check`).
 
-use super::pretty::{doc_to_pretty, write_pretty, Doc};
-use super::sides::{left_sides, Lhs};
+use super::pretty::{doc_to_pretty, write_pretty, Doc, Items};
+use super::sides::left_sides;
 use super::{quantity_string, Method, JSON_TIDY_BUDGET};
 use crate::algebra::atom::{self, AtomId};
 use crate::algebra::{Poly, Symbol};
@@ -29,8 +29,6 @@ use std::collections::HashMap;
 
 /// One expression of a document to print.
 enum Job<'a> {
-    /// An equation's left side.
-    Lhs(Lhs<'a>),
     /// A quantity past [`JSON_TIDY_BUDGET`] terms: its normal form, by the stage's shared renderer.
     Large(&'a Poly),
     /// An entry of `D` or a Christoffel symbol past [`JSON_TIDY_BUDGET`] terms: as [`Job::Large`],
@@ -50,7 +48,6 @@ impl Job<'_> {
     /// The number of terms of the quantity.
     fn len(&self) -> usize {
         match self {
-            Job::Lhs(l) => l.len(),
             Job::Large(p) | Job::Recorded(p) | Job::Small(p) => p.len(),
             Job::Rates(parts) => parts.iter().map(|(p, _, _)| p.len()).sum(),
         }
@@ -100,16 +97,9 @@ fn expanded(parts: &[(&Poly, AtomId, usize)]) -> Poly {
 }
 
 /// A job printed in ASCII, with where its terms lie for a [`Job::Recorded`] (no ranges otherwise).
-/// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can; an
-/// equation from `lent`, its parts' coefficients as printed.
-fn print(
-    renderer: &Option<Renderer>,
-    job: &Job,
-    symbols: &[TermTexts],
-    lent: &[Option<Lent>],
-) -> TermTexts {
+/// The entries of `C` copy from `symbols`, the printed symbols with `i ≤ j`, what they can.
+fn print(renderer: &Option<Renderer>, job: &Job, symbols: &[TermTexts]) -> TermTexts {
     let text = match job {
-        Job::Lhs(l) => l.string_lent(Style::Ascii, lent),
         Job::Large(p) => match renderer {
             Some(r) => r.clone().sum(p, false),
             None => poly_to_string(p, Style::Ascii),
@@ -141,7 +131,6 @@ fn print(
 /// The cost of printing a job, in [`super::side_work`]'s units.
 fn weight(job: &Job) -> usize {
     match job {
-        Job::Lhs(l) => l.work(),
         Job::Large(_) | Job::Recorded(_) | Job::Rates(_) if job.len() > JSON_TIDY_BUDGET => {
             64 * job.len()
         }
@@ -160,18 +149,78 @@ fn shown(text: String) -> Shown {
     (text, plain)
 }
 
-/// The expressions of a document, printed by stage.
-struct Printed {
+/// The expressions of a document, printed by stage, and `C(q, q̇)`'s entries ready to print.
+struct Printed<'p> {
     /// `d_kj` for `k ≤ j`, row by row.
     d_upper: Vec<Shown>,
-    /// The non-zero `c_ijk` with `i ≤ j`, in index order.
-    symbols: Vec<Shown>,
+    /// The non-zero `c_ijk` with `i ≤ j`, in index order, with where their terms lie (the entries
+    /// of `C` copy them).
+    symbols: Vec<TermTexts>,
+    /// Whether each of `symbols` is plain.
+    symbols_plain: Vec<bool>,
     /// `g_1..g_n`, then `P`.
     potential: Vec<Shown>,
     /// The left sides.
     lhs: Vec<Shown>,
-    /// `C`, row by row.
-    coriolis: Vec<Shown>,
+    /// `C`, printed as the document is written ([`CoriolisRows`]).
+    coriolis: Coriolis<'p>,
+}
+
+/// `C(q, q̇)`'s entries, row by row, as jobs on the Christoffel symbols, and the renderer of the
+/// ranking they share with the symbols.
+struct Coriolis<'p> {
+    jobs: Vec<Job<'p>>,
+    renderer: Option<Renderer<'p>>,
+    /// The number of entries in a row.
+    n: usize,
+}
+
+/// `C`'s rows as [`Doc::Lazy`] items: the entries printed on several threads
+/// ([`parallel::map_in_order`]) while the document is written, each row written and dropped once
+/// its entries are printed. A large robot's `C` is megabytes of text (3.7 MB of the Franka Panda's
+/// 12 MB document), which is then never all held at once.
+struct CoriolisRows<'p> {
+    coriolis: &'p Coriolis<'p>,
+    /// The symbols' texts, which the entries copy.
+    symbols: &'p [TermTexts],
+}
+
+impl<'p> CoriolisRows<'p> {
+    /// The rows of a document's `C`.
+    fn of(printed: &'p Printed<'p>) -> CoriolisRows<'p> {
+        CoriolisRows {
+            coriolis: &printed.coriolis,
+            symbols: &printed.symbols,
+        }
+    }
+
+    /// Every entry of `C`, row by row, given to `each` in order as it is printed.
+    fn entries(&self, mut each: impl FnMut(usize, Shown)) {
+        let c = self.coriolis;
+        parallel::map_in_order(
+            &c.jobs,
+            weight,
+            WORTH_SHARING,
+            |job| shown(print(&c.renderer, job, self.symbols).text),
+            &mut each,
+        );
+    }
+}
+
+impl Items for CoriolisRows<'_> {
+    fn each(&self, each: &mut dyn FnMut(&Doc<'_>)) {
+        let n = self.coriolis.n.max(1);
+        let mut row: Vec<Shown> = Vec::with_capacity(n);
+        self.entries(|_, entry| {
+            row.push(entry);
+            if row.len() == n {
+                each(&Doc::Arr(
+                    row.iter().map(|(s, p)| Doc::Known(s, *p)).collect(),
+                ));
+                row.clear();
+            }
+        });
+    }
 }
 
 /// The pairs `(k, j)` with `k ≤ j < n`, row by row.
@@ -205,143 +254,166 @@ fn coriolis_jobs<'a>(
         .collect()
 }
 
-/// Every expression of the document: derived first (each stage of the derivation on several threads
-/// for a large robot), then printed on several threads ([`parallel::map`], heaviest first) in two
-/// stages: `D`, the Christoffel symbols and `g`, each large one with where its terms lie; then the
-/// equations and `C`, which copy those terms where they can (`C` is printed from the Christoffel
-/// symbols, never expanded). The text is the same on any number of threads.
-///
-/// Printing the stages beside the derivation (a helper thread printing `D` while the Christoffel
-/// symbols are derived, and so on) was measured slower on two cores: the derivation then runs on one
-/// core while the helper waits for its next stage.
-fn print_all(der: &Derivation, method: Method) -> Printed {
-    // The document prints D, the Christoffel symbols, C (from them), g, P and τ by the chosen
-    // method (K is not printed).
-    let d = &der.mass_matrix().d;
-    let christoffel = der.christoffel();
-    let motion = der.motion();
-    let n = d.len();
-    // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
-    let d_jobs: Vec<Job> = upper(n)
-        .into_iter()
-        .map(|(k, j)| recorded(&d[k][j]))
-        .collect();
-    // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
-    let mut printed = vec![vec![vec![usize::MAX; n]; n]; n];
-    let mut symbols: Vec<&Poly> = Vec::new();
-    for (i, j, k, c) in nonzero_christoffel(christoffel) {
-        if i <= j {
-            let (i, j, k) = (i - 1, j - 1, k - 1);
-            printed[i][j][k] = symbols.len();
-            printed[j][i][k] = symbols.len();
-            symbols.push(c);
-        }
-    }
-    let rates = rate_atoms(n);
-    // The symbols and C share one ranking: the symbols with i ≤ j hold every atom of C but its q̇.
-    let singles: Vec<[(AtomId, i32); 1]> = rates.iter().map(|&x| [(x, 1)]).collect();
-    let shared = Ranks::of_lists(
-        symbols
-            .iter()
-            .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
-            .chain(singles.iter().map(|x| &x[..])),
-    );
-    let g_jobs: Vec<Job> = motion
-        .g
-        .iter()
-        .chain(std::iter::once(&motion.p))
-        .map(quantity)
-        .collect();
-    let (d_ranks, g_ranks) = (ranks(&d_jobs), ranks(&g_jobs));
-    let symbol_jobs = symbols.iter().map(|&p| recorded(p)).collect();
-    // Each job prints with a clone of its ranking's renderer, its factors rendered once here.
-    fn warmed(r: &Option<Ranks>) -> Option<Renderer<'_>> {
-        r.as_ref().map(|r| Renderer::warmed(r, Style::Ascii))
-    }
-    let (d_renderer, shared_renderer, g_renderer) =
-        (warmed(&d_ranks), warmed(&shared), warmed(&g_ranks));
-    let stages: [(&Option<Renderer>, Vec<Job>); 3] = [
-        (&d_renderer, d_jobs),
-        (&shared_renderer, symbol_jobs),
-        (&g_renderer, g_jobs),
-    ];
-    let flat: Vec<(usize, &Job)> = stages
-        .iter()
-        .enumerate()
-        .flat_map(|(s, (_, jobs))| jobs.iter().map(move |j| (s, j)))
-        .collect();
-    let mut texts = parallel::map(
-        &flat,
-        |(_, j)| weight(j),
-        WORTH_SHARING,
-        |&(s, j)| {
-            let texts = print(stages[s].0, j, &[], &[]);
-            let plain = super::pretty::plain(&texts.text);
-            (texts, plain)
-        },
-    )
-    .into_iter();
-    let mut next = |s: usize| {
-        texts
-            .by_ref()
-            .take(stages[s].1.len())
-            .unzip::<TermTexts, bool, Vec<TermTexts>, Vec<bool>>()
-    };
-    let ((d_texts, d_plain), (symbol_texts, symbols_plain)) = (next(0), next(1));
-    let with = |texts: Vec<TermTexts>, plain: Vec<bool>| -> Vec<Shown> {
-        texts.into_iter().map(|t| t.text).zip(plain).collect()
-    };
-    let (g_texts, g_plain) = next(2);
-    let potential = with(g_texts, g_plain);
-    // Then the equations and C, which copy what they can of D's and the symbols' texts.
-    let mut d_index = vec![vec![usize::MAX; n]; n];
-    for (i, (k, j)) in upper(n).into_iter().enumerate() {
-        d_index[k][j] = i;
-    }
-    // The coefficients of τ_k's parts, in `side_parts`' order: d_kj (the non-zero ones), c_ijk
-    // (i ≤ j, the non-zero ones), g_k (not lent). Each is checked against its part, term by term.
-    let lent_of = |k: usize| -> Vec<Option<Lent>> {
-        let mut lent = Vec::new();
-        for j in (0..n).filter(|&j| !d[k][j].is_zero()) {
-            let (a, b) = (k.min(j), k.max(j));
-            lent.push(lend(&d[a][b], &d_texts[d_index[a][b]]));
-        }
-        for i in 0..n {
-            for j in (i..n).filter(|&j| !christoffel[i][j][k].is_zero()) {
-                let s = printed[i][j][k];
-                lent.push(lend(symbols[s], &symbol_texts[s]));
+/// What the document's expressions are printed with: the derivation, the non-zero Christoffel
+/// symbols with `i ≤ j` (each printed once, for itself and its twin), where each `c_ijk`'s printed
+/// twin is, and the ranking the symbols share with `C` (the symbols with `i ≤ j` hold every atom of
+/// `C` but its `q̇`).
+struct Plan<'a> {
+    der: &'a Derivation,
+    /// The non-zero `c_ijk` with `i ≤ j`, in index order.
+    symbols: Vec<&'a Poly>,
+    /// `printed[i][j][k]`: the index among `symbols` of `c_ijk` or its twin (0-based indices).
+    printed: Vec<Vec<Vec<usize>>>,
+    /// `q̇_1 … q̇_n`.
+    rates: Vec<AtomId>,
+    shared: Option<Ranks>,
+}
+
+impl<'a> Plan<'a> {
+    /// The plan of a derivation's document (deriving `D` and the Christoffel symbols, each stage on
+    /// several threads for a large robot).
+    fn new(der: &'a Derivation) -> Plan<'a> {
+        let n = der.mass_matrix().d.len();
+        let christoffel = der.christoffel();
+        // c_ijk = c_jik: each symbol printed once, for i ≤ j, and its string given to both.
+        let mut printed = vec![vec![vec![usize::MAX; n]; n]; n];
+        let mut symbols: Vec<&Poly> = Vec::new();
+        for (i, j, k, c) in nonzero_christoffel(christoffel) {
+            if i <= j {
+                let (i, j, k) = (i - 1, j - 1, k - 1);
+                printed[i][j][k] = symbols.len();
+                printed[j][i][k] = symbols.len();
+                symbols.push(c);
             }
         }
-        lent
-    };
-    let sides = left_sides(der, method);
-    let late: Vec<Job> = sides
-        .iter()
-        .map(|&l| Job::Lhs(l))
-        .chain(coriolis_jobs(christoffel, &rates, &printed))
-        .collect();
-    let items: Vec<usize> = (0..late.len()).collect();
-    let mut late_texts = parallel::map(
-        &items,
-        |&i| weight(&late[i]),
-        WORTH_SHARING,
-        |&i| {
-            let lent = if i < sides.len() {
-                lent_of(i)
-            } else {
-                Vec::new()
-            };
-            shown(print(&shared_renderer, &late[i], &symbol_texts, &lent).text)
-        },
-    )
-    .into_iter();
-    let lhs: Vec<Shown> = late_texts.by_ref().take(sides.len()).collect();
-    Printed {
-        d_upper: with(d_texts, d_plain),
-        symbols: with(symbol_texts, symbols_plain),
-        coriolis: late_texts.collect(),
-        potential,
-        lhs,
+        let rates = rate_atoms(n);
+        let singles: Vec<[(AtomId, i32); 1]> = rates.iter().map(|&x| [(x, 1)]).collect();
+        let shared = Ranks::of_lists(
+            symbols
+                .iter()
+                .flat_map(|p| p.terms().iter().map(|(m, _)| m.factors()))
+                .chain(singles.iter().map(|x| &x[..])),
+        );
+        Plan {
+            der,
+            symbols,
+            printed,
+            rates,
+            shared,
+        }
+    }
+
+    /// Every expression of the document but `C`: printed on several threads ([`parallel::map`],
+    /// heaviest first) in two stages: `D`, the Christoffel symbols and `g`, each large one with where
+    /// its terms lie; then the equations, which copy those terms where they can. `C` is printed from
+    /// the Christoffel symbols (never expanded), copying their terms too, as the document is written
+    /// ([`CoriolisRows`]). The text is the same on any number of threads.
+    ///
+    /// Printing the stages beside the derivation (a helper thread printing `D` while the Christoffel
+    /// symbols are derived, and so on) was measured slower on two cores: the derivation then runs
+    /// on one core while the helper waits for its next stage.
+    fn print(&self, method: Method) -> Printed<'_> {
+        // The document prints D, the Christoffel symbols, C (from them), g, P and τ by the chosen
+        // method (K is not printed).
+        let der = self.der;
+        let d = &der.mass_matrix().d;
+        let christoffel = der.christoffel();
+        let motion = der.motion();
+        let n = d.len();
+        // D is symmetric: its upper triangle is printed, and d_jk takes d_kj's string.
+        let d_jobs: Vec<Job> = upper(n)
+            .into_iter()
+            .map(|(k, j)| recorded(&d[k][j]))
+            .collect();
+        let g_jobs: Vec<Job> = motion
+            .g
+            .iter()
+            .chain(std::iter::once(&motion.p))
+            .map(quantity)
+            .collect();
+        let (d_ranks, g_ranks) = (ranks(&d_jobs), ranks(&g_jobs));
+        let symbol_jobs = self.symbols.iter().map(|&p| recorded(p)).collect();
+        // Each job prints with a clone of its ranking's renderer, its factors rendered once here.
+        fn warmed(r: &Option<Ranks>) -> Option<Renderer<'_>> {
+            r.as_ref().map(|r| Renderer::warmed(r, Style::Ascii))
+        }
+        let (d_renderer, shared_renderer, g_renderer) =
+            (warmed(&d_ranks), warmed(&self.shared), warmed(&g_ranks));
+        let stages: [(&Option<Renderer>, Vec<Job>); 3] = [
+            (&d_renderer, d_jobs),
+            (&shared_renderer, symbol_jobs),
+            (&g_renderer, g_jobs),
+        ];
+        let flat: Vec<(usize, &Job)> = stages
+            .iter()
+            .enumerate()
+            .flat_map(|(s, (_, jobs))| jobs.iter().map(move |j| (s, j)))
+            .collect();
+        let mut texts = parallel::map(
+            &flat,
+            |(_, j)| weight(j),
+            WORTH_SHARING,
+            |&(s, j)| {
+                let texts = print(stages[s].0, j, &[]);
+                let plain = super::pretty::plain(&texts.text);
+                (texts, plain)
+            },
+        )
+        .into_iter();
+        let mut next = |s: usize| {
+            texts
+                .by_ref()
+                .take(stages[s].1.len())
+                .unzip::<TermTexts, bool, Vec<TermTexts>, Vec<bool>>()
+        };
+        let ((d_texts, d_plain), (symbol_texts, symbols_plain)) = (next(0), next(1));
+        let with = |texts: Vec<TermTexts>, plain: Vec<bool>| -> Vec<Shown> {
+            texts.into_iter().map(|t| t.text).zip(plain).collect()
+        };
+        let (g_texts, g_plain) = next(2);
+        let potential = with(g_texts, g_plain);
+        // Then the equations, which copy what they can of D's and the symbols' texts.
+        let mut d_index = vec![vec![usize::MAX; n]; n];
+        for (i, (k, j)) in upper(n).into_iter().enumerate() {
+            d_index[k][j] = i;
+        }
+        // The coefficients of τ_k's parts, in `side_parts`' order: d_kj (the non-zero ones), c_ijk
+        // (i ≤ j, the non-zero ones), g_k (not lent). Each is checked against its part, term by
+        // term.
+        let lent_of = |k: usize| -> Vec<Option<Lent>> {
+            let mut lent = Vec::new();
+            for j in (0..n).filter(|&j| !d[k][j].is_zero()) {
+                let (a, b) = (k.min(j), k.max(j));
+                lent.push(lend(&d[a][b], &d_texts[d_index[a][b]]));
+            }
+            for i in 0..n {
+                for j in (i..n).filter(|&j| !christoffel[i][j][k].is_zero()) {
+                    let s = self.printed[i][j][k];
+                    lent.push(lend(self.symbols[s], &symbol_texts[s]));
+                }
+            }
+            lent
+        };
+        let sides = left_sides(der, method);
+        let items: Vec<usize> = (0..sides.len()).collect();
+        let lhs: Vec<Shown> = parallel::map(
+            &items,
+            |&k| sides[k].work(),
+            WORTH_SHARING,
+            |&k| shown(sides[k].string_lent(Style::Ascii, &lent_of(k))),
+        );
+        Printed {
+            d_upper: with(d_texts, d_plain),
+            symbols: symbol_texts,
+            symbols_plain,
+            potential,
+            lhs,
+            coriolis: Coriolis {
+                jobs: coriolis_jobs(christoffel, &self.rates, &self.printed),
+                renderer: shared_renderer,
+                n,
+            },
+        }
     }
 }
 
@@ -375,6 +447,7 @@ fn document<'a>(
     der: &'a Derivation,
     method: Method,
     printed: &'a Printed,
+    coriolis: &'a CoriolisRows,
     meta: &'a Meta,
 ) -> Doc<'a> {
     let n = der.robot().dof();
@@ -387,25 +460,25 @@ fn document<'a>(
         grid[k][j] = known(s);
     }
     let mass_matrix = Doc::Arr(grid.into_iter().map(Doc::Arr).collect());
-    let coriolis = Doc::Arr(printed.coriolis.chunks(n.max(1)).map(shown).collect());
     // Printed for i ≤ j; (j, i, k) comes later in index order and takes (i, j, k)'s string.
-    let mut symbols = printed.symbols.iter();
-    let mut seen: HashMap<(usize, usize, usize), &Shown> = HashMap::new();
+    let mut symbols = printed.symbols.iter().zip(&printed.symbols_plain);
+    let mut seen: HashMap<(usize, usize, usize), Doc> = HashMap::new();
     let christoffel: Vec<Doc> = nonzero_christoffel(der.christoffel())
         .iter()
         .map(|&(i, jj, k, _)| {
-            let value: &Shown = if i <= jj {
-                let v = symbols.next().expect("one string per symbol");
-                seen.insert((i, jj, k), v);
+            let value: Doc = if i <= jj {
+                let (t, plain) = symbols.next().expect("one string per symbol");
+                let v = Doc::Known(&t.text, *plain);
+                seen.insert((i, jj, k), v.clone());
                 v
             } else {
-                seen[&(jj, i, k)]
+                seen[&(jj, i, k)].clone()
             };
             Doc::Obj(vec![
                 ("i", Doc::Scalar(&meta.numbers[i])),
                 ("j", Doc::Scalar(&meta.numbers[jj])),
                 ("k", Doc::Scalar(&meta.numbers[k])),
-                ("value", known(value)),
+                ("value", value),
             ])
         })
         .collect();
@@ -431,7 +504,7 @@ fn document<'a>(
         ("coordinates", strs(&meta.coordinates)),
         ("inputs", strs(inputs)),
         ("mass_matrix", mass_matrix),
-        ("coriolis", coriolis),
+        ("coriolis", Doc::Lazy(coriolis)),
         ("christoffel", Doc::Arr(christoffel)),
         ("gravity", shown(gravity)),
         ("potential", known(potential)),
@@ -444,17 +517,21 @@ fn document<'a>(
 
 /// The JSON document of a derivation.
 pub fn json(der: &Derivation, method: Method) -> Value {
-    let printed = print_all(der, method);
+    let plan = Plan::new(der);
+    let printed = plan.print(method);
+    let coriolis = CoriolisRows::of(&printed);
     let meta = Meta::new(der, method);
-    Value::from(&document(der, method, &printed, &meta))
+    Value::from(&document(der, method, &printed, &coriolis, &meta))
 }
 
 /// [`json`] as serde_json's pretty text and a line end, written from the printed expressions
 /// without building the [`Value`].
 pub fn json_text(der: &Derivation, method: Method) -> String {
-    let printed = print_all(der, method);
+    let plan = Plan::new(der);
+    let printed = plan.print(method);
+    let coriolis = CoriolisRows::of(&printed);
     let meta = Meta::new(der, method);
-    let doc = document(der, method, &printed, &meta);
+    let doc = document(der, method, &printed, &coriolis, &meta);
     let mut text = doc_to_pretty(&doc);
     text.push('\n');
     text
@@ -462,15 +539,17 @@ pub fn json_text(der: &Derivation, method: Method) -> String {
 
 /// [`json_text`] written to `sink` a piece at a time ([`write_pretty`]; what `symdyn derive
 /// --format json` prints): the megabytes of a large robot's document are never copied into one
-/// string.
+/// string, and `C`'s are written as they are printed.
 pub fn write_json(
     der: &Derivation,
     method: Method,
     sink: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
-    let printed = print_all(der, method);
+    let plan = Plan::new(der);
+    let printed = plan.print(method);
+    let coriolis = CoriolisRows::of(&printed);
     let meta = Meta::new(der, method);
-    write_pretty(&document(der, method, &printed, &meta), sink)
+    write_pretty(&document(der, method, &printed, &coriolis, &meta), sink)
 }
 
 #[cfg(test)]
@@ -487,7 +566,10 @@ mod tests {
             .expect("valid")
             .robot;
         let der = Derivation::new(robot).expect("valid");
-        let printed = print_all(&der, Method::Lagrange);
+        let plan = Plan::new(&der);
+        let printed = plan.print(Method::Lagrange);
+        let mut coriolis = Vec::new();
+        CoriolisRows::of(&printed).entries(|_, entry| coriolis.push(entry));
         let n = der.robot().dof();
         let mut large = 0;
         for k in 0..n {
@@ -497,7 +579,7 @@ mod tests {
                     large += 1;
                     // Checked plain where printed: an expression needs no escaping.
                     assert_eq!(
-                        printed.coriolis[k * n + j],
+                        coriolis[k * n + j],
                         (poly_to_string(c, Style::Ascii), true),
                         "C{k}{j}"
                     );
@@ -508,9 +590,14 @@ mod tests {
         let symbols = nonzero_christoffel(der.christoffel())
             .into_iter()
             .filter(|(i, j, _, _)| i <= j);
-        for ((i, j, k, c), text) in symbols.zip(&printed.symbols) {
+        let texts = printed.symbols.iter().zip(&printed.symbols_plain);
+        for ((i, j, k, c), (text, plain)) in symbols.zip(texts) {
             if c.len() > JSON_TIDY_BUDGET {
-                assert_eq!(*text, (poly_to_string(c, Style::Ascii), true), "c{i}{j}{k}");
+                assert_eq!(
+                    (&text.text, *plain),
+                    (&poly_to_string(c, Style::Ascii), true),
+                    "c{i}{j}{k}"
+                );
             }
         }
     }

@@ -22,6 +22,23 @@ pub enum Doc<'a> {
     Arr(Vec<Doc<'a>>),
     /// An object; written in the order of its keys, as serde_json's map keeps them.
     Obj(Vec<(&'a str, Doc<'a>)>),
+    /// An array whose items are made as it is written (by an `Items`).
+    Lazy(&'a dyn Items),
+}
+
+impl std::fmt::Debug for dyn Items + '_ {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Items")
+    }
+}
+
+/// The items of a [`Doc::Lazy`] array, made while the document is written and dropped once
+/// written: a large robot's `C(q, q̇)`, printed on several threads as the document goes out, so
+/// that its megabytes of text are never all held at once.
+pub trait Items {
+    /// Gives every item to `each`, in order (each may be dropped once `each` returns). Called once
+    /// for each writing of the document.
+    fn each(&self, each: &mut dyn FnMut(&Doc<'_>));
 }
 
 impl<'a> From<&'a Value> for Doc<'a> {
@@ -49,6 +66,11 @@ impl From<&Doc<'_>> for Value {
                     map.insert(k.to_string(), v.into());
                 }
                 Value::Object(map)
+            }
+            Doc::Lazy(items) => {
+                let mut values = Vec::new();
+                items.each(&mut |item| values.push(Value::from(item)));
+                Value::Array(values)
             }
         }
     }
@@ -232,6 +254,8 @@ fn size(doc: &Doc, depth: usize) -> usize {
                 + line
         }
         Doc::Scalar(_) => 24,
+        // Not known before it is written: the string grows for it.
+        Doc::Lazy(_) => 2,
     }
 }
 
@@ -308,7 +332,46 @@ fn write<'d>(out: &mut Out<'_, 'd>, doc: &Doc<'d>, depth: usize) {
         }
         // null, booleans and numbers as serde_json writes them.
         Doc::Scalar(v) => out.push_str(&serde_json::to_string(v).expect("a scalar serialises")),
+        Doc::Lazy(items) => {
+            out.push('[');
+            let mut empty = true;
+            items.each(&mut |item| {
+                if !empty {
+                    out.push(',');
+                }
+                empty = false;
+                newline(out, depth + 1);
+                write_transient(out, item, depth + 1);
+            });
+            if !empty {
+                newline(out, depth);
+            }
+            out.push(']');
+        }
     }
+}
+
+/// [`write`] of an item that lives shorter than the document ([`Doc::Lazy`]'s): everything before
+/// it is written first, then the item (its long strings from where they are, as any), which is then
+/// written out too before it can be dropped.
+fn write_transient(out: &mut Out<'_, '_>, item: &Doc<'_>, depth: usize) {
+    out.flush();
+    let mut here = Out {
+        buf: std::mem::take(&mut out.buf),
+        sink: out.sink.as_mut().map(|sink| Sink {
+            to: &mut *sink.to,
+            error: sink.error.take(),
+            pieces: Vec::with_capacity(MAX_PIECES),
+            run: 0,
+        }),
+    };
+    write(&mut here, item, depth);
+    here.flush();
+    let (buf, error) = (here.buf, here.sink.and_then(|sink| sink.error));
+    if let Some(sink) = &mut out.sink {
+        sink.error = error;
+    }
+    out.buf = buf;
 }
 
 #[cfg(test)]
@@ -426,6 +489,50 @@ mod tests {
             text.trim_end(),
             serde_json::to_string_pretty(&Value::from(&doc)).expect("JSON")
         );
+    }
+
+    /// Items made as they are written, each dropped after: rows of long and short strings, as
+    /// `C`'s are.
+    struct Rows(usize);
+
+    impl Items for Rows {
+        fn each(&self, each: &mut dyn FnMut(&Doc<'_>)) {
+            for r in 0..self.0 {
+                let row: Vec<String> = (0..3)
+                    .map(|c| format!("m{r}*qd{c} + ").repeat(if c == 1 { 2 } else { LONG }))
+                    .collect();
+                let quoted = format!("row \"{r}\"");
+                let mut items: Vec<Doc> = row.iter().map(|s| Doc::Known(s, plain(s))).collect();
+                items.push(Doc::Str(&quoted));
+                each(&Doc::Arr(items));
+            }
+        }
+    }
+
+    /// A lazy array is written, built into a string and made a value alike: as the array of its
+    /// items would be, empty or not, between borrowed strings before and after it.
+    #[test]
+    fn a_lazy_array_is_written_as_the_array_of_its_items() {
+        let long = "g*m1 + ".repeat(LONG);
+        for rows in [0, 1, 5] {
+            let lazy = Rows(rows);
+            let doc = Doc::Obj(vec![
+                ("before", Doc::Str(&long)),
+                ("rows", Doc::Lazy(&lazy)),
+                ("after", Doc::Arr(vec![Doc::Str(&long), Doc::Str("x")])),
+            ]);
+            let value = Value::from(&doc);
+            assert_eq!(value["rows"].as_array().map(Vec::len), Some(rows));
+            let want = serde_json::to_string_pretty(&value).expect("JSON");
+            assert_eq!(doc_to_pretty(&doc), want, "{rows} rows");
+            let mut sink = Trickle(Vec::new());
+            write_pretty(&doc, &mut sink).expect("a vector takes everything");
+            assert_eq!(
+                String::from_utf8(sink.0).expect("UTF-8"),
+                format!("{want}\n"),
+                "{rows} rows"
+            );
+        }
     }
 
     #[test]
