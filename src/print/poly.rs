@@ -290,6 +290,12 @@ pub struct Measure {
 /// The powers `1..=DENSE_POWERS` of a rank have a slot each in [`Renderer`]'s table.
 const DENSE_POWERS: i32 = 4;
 
+/// The slot in [`Renderer`]'s table of `base^exp` for the rank `rank` (`exp` in
+/// `1..=DENSE_POWERS`), guarded or not.
+fn dense_at(rank: u32, exp: i32, guarded: bool) -> usize {
+    (rank as usize * DENSE_POWERS as usize + (exp - 1) as usize) * 2 + guarded as usize
+}
+
 /// The length [`Renderer::text_bound`] allows a factor that is not rendered yet (`sin(q2)^2` is
 /// 9 bytes, `\sin^{2}\theta_{2}` 17).
 const UNRENDERED: usize = 24;
@@ -342,8 +348,7 @@ impl<'a> Renderer<'a> {
     fn factor(&mut self, rank: u32, exp: i32, guarded: bool) -> Rendered {
         let guarded = guarded && self.style == Style::Latex;
         if (1..=DENSE_POWERS).contains(&exp) {
-            let at =
-                (rank as usize * DENSE_POWERS as usize + (exp - 1) as usize) * 2 + guarded as usize;
+            let at = dense_at(rank, exp, guarded);
             if self.dense[at].end == 0 {
                 self.dense[at] = self.render(rank, exp, guarded);
             }
@@ -910,8 +915,11 @@ impl<'a> Renderer<'a> {
     /// [`UNRENDERED`].
     fn factor_bound(&self, rank: u32, exp: i32) -> usize {
         if (1..=DENSE_POWERS).contains(&exp) {
-            let at = (rank as usize * DENSE_POWERS as usize + (exp - 1) as usize) * 2;
-            if let Some(f) = self.dense.get(at).filter(|f| f.end > 0) {
+            if let Some(f) = self
+                .dense
+                .get(dense_at(rank, exp, false))
+                .filter(|f| f.end > 0)
+            {
                 // A guarded factor adds a thin space in LaTeX.
                 return (f.end - f.start) as usize + 2;
             }
@@ -923,15 +931,14 @@ impl<'a> Renderer<'a> {
     /// numerator and denominator (each decimal digit holds more than three bits), and room for
     /// LaTeX's `\frac{}{}`.
     fn number_bound(&self, c: &Rational) -> usize {
-        let digits = |bits: u64| bits as usize / 3 + 1;
+        let bits = |x: i64| u64::from(64 - x.unsigned_abs().leading_zeros());
         let (num, den) = match c.as_small() {
-            Some((n, d)) => (digits(64 - n.unsigned_abs().leading_zeros() as u64), {
-                digits(64 - d.unsigned_abs().leading_zeros() as u64)
-            }),
-            None => (digits(c.numer().bits()), digits(c.denom().bits())),
+            Some((n, d)) => (bits(n), bits(d)),
+            None => (c.numer().bits(), c.denom().bits()),
         };
+        let digits = |bits: u64| bits as usize / 3 + 1;
         let latex = if self.style == Style::Latex { 10 } else { 0 };
-        4 + num + den + latex
+        4 + digits(num) + digits(den) + latex
     }
 
     /// Appends the magnitude of a term: copied from its lent text and its last factor, or printed.

@@ -169,7 +169,9 @@ struct Printed<'p> {
 /// `C(q, q̇)`'s entries, row by row, as jobs on the Christoffel symbols, and the renderer of the
 /// ranking they share with the symbols.
 struct Coriolis<'p> {
+    /// The entries, row by row ([`coriolis_jobs`]).
     jobs: Vec<Job<'p>>,
+    /// The renderer of [`Plan`]'s shared ranking, warmed.
     renderer: Option<Renderer<'p>>,
     /// The number of entries in a row.
     n: usize,
@@ -259,6 +261,7 @@ fn coriolis_jobs<'a>(
 /// twin is, and the ranking the symbols share with `C` (the symbols with `i ≤ j` hold every atom of
 /// `C` but its `q̇`).
 struct Plan<'a> {
+    /// The derivation whose document it is.
     der: &'a Derivation,
     /// The non-zero `c_ijk` with `i ≤ j`, in index order.
     symbols: Vec<&'a Poly>,
@@ -266,6 +269,8 @@ struct Plan<'a> {
     printed: Vec<Vec<Vec<usize>>>,
     /// `q̇_1 … q̇_n`.
     rates: Vec<AtomId>,
+    /// The ranking of the symbols' atoms and the `q̇` (none when an atom is outside the plain
+    /// class: then each prints from its expression).
     shared: Option<Ranks>,
 }
 
