@@ -125,10 +125,11 @@ pub fn share(total: usize, min_total: usize, work: impl Fn() + Sync) {
 /// `f` of every item, given to `consume` on the calling thread in the items' order as soon as it
 /// and every item before it are computed: computed on up to [`threads`] threads, taken in the
 /// items' order, when `weight` sums to at least `min_total` (as for [`map`]); one by one on the
-/// calling thread otherwise, and always inside [`serially`]. A result is dropped once consumed, so
-/// only the results computed ahead of the slowest one are held at a time: for a document of
-/// megabytes written as it is printed (memory touched for the first time costs more here than the
-/// printing). The calling thread only consumes.
+/// calling thread otherwise, and always inside [`serially`]. A result is dropped once consumed, and
+/// the workers compute at most `AHEAD` (four) items per thread past the last one consumed, so
+/// that only a few results are held at a time however slow the consumer (a pipe to a slow
+/// reader): for a document of megabytes written as it is printed (memory touched for the first
+/// time costs more here than the printing). The calling thread only consumes.
 pub fn map_in_order<T: Sync, R: Send>(
     items: &[T],
     weight: impl Fn(&T) -> usize,
@@ -144,12 +145,14 @@ pub fn map_in_order<T: Sync, R: Send>(
         }
         return;
     }
-    /// The results computed and not consumed yet, and whether a worker stopped by panicking.
+    /// The results computed and not consumed yet, how many were consumed, and whether a thread
+    /// stopped by panicking.
     struct Ready<R> {
         results: Vec<Option<R>>,
+        consumed: usize,
         failed: bool,
     }
-    /// Marks the work as failed if its worker unwinds, so the consumer stops waiting.
+    /// Marks the work as failed if its thread unwinds, so the others stop waiting.
     struct Alarm<'s, R>(&'s (std::sync::Mutex<Ready<R>>, std::sync::Condvar));
     impl<R> Drop for Alarm<'_, R> {
         fn drop(&mut self) {
@@ -164,17 +167,29 @@ pub fn map_in_order<T: Sync, R: Send>(
     let state = (
         std::sync::Mutex::new(Ready {
             results: (0..items.len()).map(|_| None).collect(),
+            consumed: 0,
             failed: false,
         }),
         std::sync::Condvar::new(),
     );
     let next = AtomicUsize::new(0);
     let (state, next, f) = (&state, &next, &f);
+    let ahead = AHEAD * threads;
     let work = move || {
         let _alarm = Alarm(state);
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
             let Some(item) = items.get(i) else { break };
+            // The item the consumer waits for is never held back (it is below the window), so
+            // the wait always ends.
+            let mut ready = state.0.lock().expect("a worker does not panic");
+            while i >= ready.consumed + ahead && !ready.failed {
+                ready = state.1.wait(ready).expect("a worker does not panic");
+            }
+            if ready.failed {
+                break;
+            }
+            drop(ready);
             let r = f(item);
             state.0.lock().expect("a worker does not panic").results[i] = Some(r);
             state.1.notify_all();
@@ -184,6 +199,8 @@ pub fn map_in_order<T: Sync, R: Send>(
         for _ in 0..threads.min(items.len()) {
             scope.spawn(work);
         }
+        // A consumer that panics stops the workers too.
+        let _alarm = Alarm(state);
         for i in 0..items.len() {
             let mut ready = state.0.lock().expect("a worker does not panic");
             let r = loop {
@@ -193,11 +210,16 @@ pub fn map_in_order<T: Sync, R: Send>(
                 assert!(!ready.failed, "a worker thread does not panic");
                 ready = state.1.wait(ready).expect("a worker does not panic");
             };
+            ready.consumed = i + 1;
             drop(ready);
+            state.1.notify_all();
             consume(i, r);
         }
     });
 }
+
+/// How many items per thread [`map_in_order`]'s workers compute past the last one consumed.
+const AHEAD: usize = 4;
 
 /// About a third of a millisecond of work (the items' weights, in units of about 3 ns): below it
 /// a job stays on the calling thread, since starting a thread costs a few hundred microseconds here.
@@ -243,6 +265,52 @@ mod tests {
             assert_eq!(got, want, "min_total {min_total}");
         }
         map_in_order(&[] as &[u64], |_| 1, 0, work, |_, _| panic!("no item"));
+    }
+
+    /// A slow consumer holds the workers back: they never compute more than their window past the
+    /// last item consumed (without the window, they would compute every item at once).
+    #[test]
+    fn workers_stay_a_few_items_ahead_of_a_slow_consumer() {
+        let items: Vec<u64> = (0..64).collect();
+        let started = AtomicUsize::new(0);
+        let mut most = 0;
+        map_in_order(
+            &items,
+            |_| usize::MAX / 128,
+            0,
+            |&n| {
+                started.fetch_add(1, Ordering::SeqCst);
+                n
+            },
+            |i, _| {
+                most = most.max(started.load(Ordering::SeqCst) - i);
+                std::thread::sleep(std::time::Duration::from_micros(300));
+            },
+        );
+        assert_eq!(started.load(Ordering::SeqCst), items.len());
+        assert!(most <= AHEAD * threads() + 1, "{most} computed ahead");
+        assert!(
+            most < items.len() / 2,
+            "{most} computed ahead: the window holds them back"
+        );
+    }
+
+    #[test]
+    fn a_consumer_that_panics_stops_the_workers() {
+        let items: Vec<u64> = (0..64).collect();
+        let stopped = std::panic::catch_unwind(|| {
+            map_in_order(
+                &items,
+                |_| usize::MAX / 128,
+                0,
+                |&n| n,
+                |i, _| assert!(i != 2, "item 2 is refused"),
+            )
+        });
+        assert!(
+            stopped.is_err(),
+            "the panic reaches the caller, which does not hang"
+        );
     }
 
     #[test]
