@@ -60,7 +60,7 @@ static FACTORED: Memo<Expr, Vec<Expr>> = Memo::new();
 /// Whether `a` is a symbol or a sum of rational multiples of symbols (`q1`, `2 q1`, `q2 + q3`,
 /// `q1 − 1`), which [`factor_common`] leaves as it is: nothing but content can come out of it, and
 /// the canonical constructors distribute a lone number over a sum again.
-fn of_symbols(a: &Expr) -> bool {
+pub(super) fn of_symbols(a: &Expr) -> bool {
     let symbol_term = |t: &Expr| matches!(t.kind(), Kind::Sym(_));
     match a.kind() {
         Kind::Sym(_) => true,

@@ -11,6 +11,7 @@
 use super::collect::{collect, KeyClass};
 use super::factor::factor_list;
 use super::memo::Memo;
+use super::ranked::RankedSum;
 use super::rates::group_rates;
 use super::share::share_cofactors;
 use crate::algebra::expr::{Expr, Kind};
@@ -33,8 +34,14 @@ pub enum Grouping {
 /// `m1 g cos(q1) + m2 g cos(q1) + m2 g sin(q2)` by [`Grouping::Trig`] is
 /// `(m1 + m2) g cos(q1) + m2 g sin(q2)`.
 pub fn group(e: &Expr, grouping: Grouping) -> Expr {
+    group_ranked(e, None, grouping)
+}
+
+/// [`group`] of a sum whose ranked terms the contraction left (`ranks`, when it ended in ranks):
+/// the grouping by leading parameter goes on from them instead of ranking the sum again.
+pub(super) fn group_ranked(e: &Expr, ranks: Option<&RankedSum>, grouping: Grouping) -> Expr {
     DISPLAYED.get_or(&(e.clone(), grouping), |(e, grouping)| {
-        grouped(e, *grouping)
+        grouped(e, ranks, *grouping)
     })
 }
 
@@ -42,8 +49,26 @@ pub fn group(e: &Expr, grouping: Grouping) -> Expr {
 /// equation's side in the Euler–Lagrange section and in both Newton–Euler sections).
 static DISPLAYED: Memo<(Expr, Grouping), Expr> = Memo::new();
 
-/// [`group`], computed.
-fn grouped(e: &Expr, grouping: Grouping) -> Expr {
+/// [`group`], computed: by leading parameter on the sum's ranked terms when its bases are plain
+/// ([`super::leading`], the same result, checked against the expressions' in debug builds), else on
+/// the expressions.
+fn grouped(e: &Expr, ranks: Option<&RankedSum>, grouping: Grouping) -> Expr {
+    if grouping == Grouping::Leading {
+        if let Some(items) = super::leading::leading_groups(e, ranks) {
+            let ranked = share_cofactors(&Expr::sum(items));
+            debug_assert_eq!(
+                ranked,
+                grouped_on_expressions(e, grouping),
+                "grouped on ranks as on expressions: {e:?}"
+            );
+            return ranked;
+        }
+    }
+    grouped_on_expressions(e, grouping)
+}
+
+/// [`group`] on the expressions: the terms taken apart, grouped, factored and built again.
+pub(super) fn grouped_on_expressions(e: &Expr, grouping: Grouping) -> Expr {
     let groups = match grouping {
         Grouping::Trig => collect(e, KeyClass::Trig),
         Grouping::Leading => by_leading_param(e),

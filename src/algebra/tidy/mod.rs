@@ -42,6 +42,7 @@ pub mod contract;
 pub mod equation;
 pub mod factor;
 pub mod group;
+mod leading;
 pub mod memo;
 pub mod pythagoras;
 mod ranked;
@@ -92,19 +93,19 @@ fn is_atom(e: &Expr) -> bool {
 /// [`tidy_by`] of a polynomial, which is its own normal form: the conversion from an expression that
 /// [`tidy_by`] starts with (the larger part of its cost on the intermediate vectors of a sheet) is
 /// skipped, and the passes of the contraction work on the polynomial's ranked terms (module
-/// `ranked`) when its atoms are symbols, sines and cosines. The same result as
-/// `tidy_by(&p.to_expr(), grouping)`.
+/// `ranked`) when its atoms are symbols, sines and cosines, as does the grouping by leading
+/// parameter after them (module `leading`). The same result as `tidy_by(&p.to_expr(), grouping)`.
 pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
     // A single term is its own display form: no rule has two terms to merge, and the grouping
     // gives back the canonical product it started from.
     if p.len() <= 1 {
         return p.to_expr();
     }
-    let contracted = match p.ranked() {
+    let (contracted, ranks) = match p.ranked() {
         Some(r) => ranked::contract_ranked(r),
-        None => contract::contract_normal(&p.to_expr()),
+        None => (contract::contract_normal(&p.to_expr()), None),
     };
-    group(&contracted, grouping)
+    group::group_ranked(&contracted, ranks.as_ref(), grouping)
 }
 
 /// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial

@@ -25,20 +25,22 @@ use crate::algebra::poly::{cmp_ranked, Ranked};
 use std::collections::hash_map::Entry;
 
 /// [`super::contract::contract_normal`] of the canonical sum of `ranked`, its passes of the angle-sum
-/// identities made on ranked terms ([`RankedSum::contract`]).
-pub(super) fn contract_ranked(ranked: Ranked<'_>) -> Expr {
+/// identities made on ranked terms ([`RankedSum::contract`]); with the result's ranked terms when
+/// the passes ended in ranks (the grouping goes on from them, [`super::leading`]).
+pub(super) fn contract_ranked(ranked: Ranked<'_>) -> (Expr, Option<RankedSum>) {
     if !contractible_ranked(&ranked) {
-        return ranked.to_expr();
+        let sum = RankedSum::of(ranked);
+        return (sum.to_expr(), Some(sum));
     }
     if !ranked.bases.iter().all(Expr::is_plain_base) {
-        return fixpoint(&ranked.to_expr(), PASS_LIMIT, pass);
+        return (fixpoint(&ranked.to_expr(), PASS_LIMIT, pass), None);
     }
     #[cfg(debug_assertions)]
     let on_expressions = fixpoint(&ranked.to_expr(), PASS_LIMIT, pass);
     let contracted = RankedSum::of(ranked).contract();
     #[cfg(debug_assertions)]
     assert_eq!(
-        contracted, on_expressions,
+        contracted.0, on_expressions,
         "contracted in ranks as on expressions"
     );
     contracted
@@ -263,18 +265,18 @@ fn pair_terms<'t>(
 /// A sum's terms over ranked bases, owned: what [`contract_ranked`] passes over until no identity
 /// applies, the merged angles (`cos(A + B)`) ranked in among the bases as they come. Its bases are
 /// plain ([`Expr::is_plain_base`]), so its canonical sum is built from the ranks as they stand.
-struct RankedSum {
+pub(super) struct RankedSum {
     /// The bases, by rank (a base no term holds any more may stay: it orders nothing differently).
-    bases: Vec<Expr>,
+    pub(super) bases: Vec<Expr>,
     /// The terms other than the constant, in the canonical order of their monomials (as
     /// [`Ranked::terms`]).
-    terms: Vec<Term>,
+    pub(super) terms: Vec<Term>,
     /// The constant term.
-    constant: Rational,
+    pub(super) constant: Rational,
 }
 
 /// A term of a [`RankedSum`]: its factors by rank and its coefficient.
-type Term = (Vec<(u32, i32)>, Rational);
+pub(super) type Term = (Vec<(u32, i32)>, Rational);
 
 /// A term a pass merged: `R`'s factors by rank, its value's base (an index among the pass's
 /// distinct values) and its coefficient.
@@ -335,26 +337,29 @@ impl RankedSum {
 
     /// [`super::contract::contract_normal`] of the canonical sum: passes of the angle-sum
     /// identities made in ranks while no rule of squares may apply, the rest (and a pass whose
-    /// merged value is not a base) by the passes on expressions.
-    fn contract(mut self) -> Expr {
+    /// merged value is not a base) by the passes on expressions; with the ranked terms when the
+    /// passes ended in ranks.
+    fn contract(mut self) -> (Expr, Option<RankedSum>) {
         let mut passes = 0;
+        let on_expressions =
+            |sum: &RankedSum, passes| (fixpoint(&sum.to_expr(), PASS_LIMIT - passes, pass), None);
         while passes < PASS_LIMIT {
             // A pass tries the square of an angle sum first: a term with two squared cosines may
             // start one.
             if self.squared_cosines(2) {
-                return fixpoint(&self.to_expr(), PASS_LIMIT - passes, pass);
+                return on_expressions(&self, passes);
             }
             match self.angle_pass() {
                 Pass::Changed => passes += 1,
                 Pass::Unchanged => break,
-                Pass::Unranked => return fixpoint(&self.to_expr(), PASS_LIMIT - passes, pass),
+                Pass::Unranked => return on_expressions(&self, passes),
             }
         }
         // No angle sum left: Pythagoras, if a squared cosine is there.
         if passes < PASS_LIMIT && self.squared_cosines(1) {
-            return fixpoint(&self.to_expr(), PASS_LIMIT - passes, pass);
+            return on_expressions(&self, passes);
         }
-        self.to_expr()
+        (self.to_expr(), Some(self))
     }
 
     /// One pass of the angle-sum identities ([`pair_terms`]), the merged terms `c · h · R` put in
@@ -516,7 +521,7 @@ mod tests {
             }
             in_ranks += usize::from(ranked_passes >= 2);
             passed += usize::from(!contractible_ranked(&ranked));
-            let got = contract_ranked(ranked);
+            let got = contract_ranked(ranked).0;
             assert_eq!(got, contract_normal(&e), "{e:?}");
             total += 1;
             contracted += usize::from(got != e);
