@@ -94,6 +94,25 @@ proptest! {
         prop_assert!(equal(&e, &tidy_by(&e, Grouping::Leading)));
     }
 
+    /// The grouping by leading parameter on ranked terms is the grouping on the expressions: of a
+    /// sum ranked again, and of a polynomial's contraction that hands its ranks over.
+    #[test]
+    fn the_grouping_on_ranks_is_the_grouping_on_expressions(e in expression()) {
+        let c = contract_trig(&e);
+        let on_expressions = group::grouped_on_expressions(&c, Grouping::Leading);
+        if let Some(items) = leading::leading_groups(&c, None) {
+            prop_assert_eq!(share::share_cofactors(&Expr::sum(items)), on_expressions.clone());
+        }
+        let p = crate::algebra::to_poly(&e);
+        if p.len() >= 2 {
+            let contracted = contract::contract_normal(&p.to_expr());
+            prop_assert_eq!(
+                tidy_poly_by(&p, Grouping::Leading),
+                group::grouped_on_expressions(&contracted, Grouping::Leading)
+            );
+        }
+    }
+
     #[test]
     fn collect_adds_back_up(e in expression()) {
         let n = normal_form(&e);
