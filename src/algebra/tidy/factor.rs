@@ -60,7 +60,7 @@ static FACTORED: Memo<Expr, Vec<Expr>> = Memo::new();
 /// Whether `a` is a symbol or a sum of rational multiples of symbols (`q1`, `2 q1`, `q2 + q3`,
 /// `q1 − 1`), which [`factor_common`] leaves as it is: nothing but content can come out of it, and
 /// the canonical constructors distribute a lone number over a sum again.
-pub(super) fn of_symbols(a: &Expr) -> bool {
+fn of_symbols(a: &Expr) -> bool {
     let symbol_term = |t: &Expr| matches!(t.kind(), Kind::Sym(_));
     match a.kind() {
         Kind::Sym(_) => true,
@@ -81,7 +81,7 @@ fn plain_factors(t: &Expr) -> Option<Vec<(Expr, i64)>> {
 }
 
 /// A base [`factor_common`] leaves as it is: a symbol, π, a surd, a function of symbols.
-fn plain(b: &Expr) -> bool {
+pub(super) fn plain(b: &Expr) -> bool {
     match b.kind() {
         Kind::Sym(_) | Kind::Pi | Kind::Sqrt(_) => true,
         Kind::Fun(_, a) => of_symbols(a),

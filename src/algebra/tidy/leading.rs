@@ -13,7 +13,7 @@
 //! Only sums whose bases are all plain (symbols, π, sines and cosines of sums of symbols) go this
 //! way: those are what the Newton–Euler vectors of a sheet hold once contracted.
 
-use super::factor::of_symbols;
+use super::factor;
 use super::ranked::{rank_sum, RankedSum};
 use super::rates::group_rates;
 use crate::algebra::expr::{Expr, Kind};
@@ -104,13 +104,9 @@ fn groups_of<C: Borrow<Rational>>(
 }
 
 /// A base [`super::factor::factor_list`] leaves as it is and [`Ranked::monomial_over`] builds
-/// as it stands: a symbol, π, a sine or cosine of a sum of symbols.
+/// as it stands: a symbol, π, a sine or cosine of a sum of symbols (not a surd).
 fn plain(b: &Expr) -> bool {
-    match b.kind() {
-        Kind::Sym(_) | Kind::Pi => true,
-        Kind::Fun(_, a) => of_symbols(a),
-        _ => false,
-    }
+    factor::plain(b) && b.is_plain_base()
 }
 
 /// The factors of `Σ terms + constant` (the terms sorted, none of them constant; a group holds one
