@@ -300,12 +300,12 @@ pub(crate) fn lay_out(p: &Poly, ranks: &Ranks, style: Style, sink: &mut impl Sin
 /// [`lay_out`] of `Σ_i p_i · m_i` from its parts, as [`side_text_of_parts`] describes; `false`, with
 /// nothing given to `sink`, when the side cannot be laid out from them (a part of several, or
 /// multiplied by something, holds a `q̇` or `q̈`).
-pub(crate) fn lay_out_parts(
+pub(crate) fn lay_out_parts<S: Sink>(
     parts: &[(&Poly, &[(AtomId, i32)])],
     lent: &[Option<Lent>],
     ranks: &Ranks,
     style: Style,
-    sink: &mut impl Sink,
+    sink: &mut S,
 ) -> bool {
     let roles: Vec<Role> = (0..ranks.len() as u32)
         .map(|r| role(ranks.atom(r)))
@@ -343,11 +343,51 @@ pub(crate) fn lay_out_parts(
         }
     };
     let mut scratch: Factors = Vec::new();
-    for (part, &(p, by_atoms)) in parts.iter().enumerate() {
-        let part = part as u32;
-        let mut by: Factors = Vec::with_capacity(by_atoms.len());
-        push_ranked(&mut by, by_atoms);
-        by.sort_unstable_by_key(|&(r, _)| r);
+    // Each part's multiplier by rank; a part multiplied by a key of its own, alone, whose
+    // coefficient was printed before is written from that text ([`lent_group`]).
+    let bys: Vec<Factors> = parts
+        .iter()
+        .map(|&(_, by_atoms)| {
+            let mut by: Factors = Vec::with_capacity(by_atoms.len());
+            push_ranked(&mut by, by_atoms);
+            by.sort_unstable_by_key(|&(r, _)| r);
+            by
+        })
+        .collect();
+    // The key of each part multiplied by one.
+    let part_keys: Vec<Option<Factors>> = bys
+        .iter()
+        .map(|by| {
+            (!whole && moving(by)).then(|| {
+                let (_, key_role) = key_of(by);
+                by.iter()
+                    .copied()
+                    .filter(|&(r, _)| roles[r as usize] == key_role)
+                    .collect()
+            })
+        })
+        .collect();
+    // Whether a part is multiplied by nothing but its key (or by nothing): only then are its terms
+    // in the side those of its coefficient, which a lent text can give.
+    let bare = |part: usize| {
+        let by_len = bys[part].len();
+        part_keys[part]
+            .as_ref()
+            .map_or(by_len == 0, |k| k.len() == by_len)
+    };
+    // Multiplied by its key alone, which no other part has.
+    let alone = |part: usize| {
+        let key = &part_keys[part];
+        key.is_some()
+            && bare(part)
+            && part_keys
+                .iter()
+                .enumerate()
+                .all(|(other, k)| other == part || k != key)
+    };
+    let mut copied: Vec<(u8, (u32, u32), usize, Lent)> = Vec::new();
+    for (part, &(p, _)) in parts.iter().enumerate() {
+        let mut by = bys[part].clone();
         if !whole && moving(&by) {
             // Every term of the part has the part's key (its accelerations, else its rates): the
             // terms themselves hold neither, or the side is not laid out from its parts.
@@ -356,6 +396,14 @@ pub(crate) fn lay_out_parts(
             buf.extend(by.iter().filter(|&&(r, _)| roles[r as usize] == key_role));
             let key = (start, buf.len() as u32);
             by.retain(|&(r, _)| roles[r as usize] != key_role);
+            if S::COPIES && alone(part) {
+                let l = lent.get(part).copied().flatten();
+                if let Some(l) = l.filter(|l| copyable(p, l, ranks, &roles)) {
+                    copied.push((stage, key, part, l));
+                    continue;
+                }
+            }
+            let part = part as u32;
             for (m, c) in p.terms() {
                 let start = buf.len();
                 push_ranked(&mut buf, m.factors());
@@ -374,6 +422,7 @@ pub(crate) fn lay_out_parts(
             }
             continue;
         }
+        let part = part as u32;
         for (m, c) in p.terms() {
             scratch.clear();
             push_ranked(&mut scratch, m.factors());
@@ -425,6 +474,11 @@ pub(crate) fn lay_out_parts(
         members.push(i as u32);
         last = Some((t.key, members));
     }
+    let mut copied_keys: FxHashMap<&[(u32, i32)], (usize, Lent)> = FxHashMap::default();
+    for &(stage, key, part, l) in &copied {
+        keys[stage as usize].push(range(key));
+        copied_keys.insert(range(key), (part, l));
+    }
     // q̈ by coordinate index, q̇ products in canonical order (both are ranked by it); the rest:
     // simpler trig monomials first (fewer trig factors), then canonical order.
     keys[0].sort_by(|a, b| super::poly::cmp_factor_lists(a, b));
@@ -435,6 +489,10 @@ pub(crate) fn lay_out_parts(
             .then_with(|| super::poly::cmp_factor_lists(a, b))
     });
     for key in keys.iter().flatten() {
+        if let Some(&(part, l)) = copied_keys.get(key) {
+            lent_group(sink, &mut r, parts[part].0, l, key, ranks, &mut scratch);
+            continue;
+        }
         let members = &groups[key];
         let coeff: Vec<Coefficient> = members
             .iter()
@@ -447,7 +505,8 @@ pub(crate) fn lay_out_parts(
         let part = splits[members[0] as usize].part as usize;
         let lent = lent.get(part).copied().flatten().filter(|l| {
             let p = parts[part].0;
-            members.len() == p.len()
+            bare(part)
+                && members.len() == p.len()
                 && members
                     .iter()
                     .all(|&i| splits[i as usize].part as usize == part)
@@ -461,6 +520,61 @@ pub(crate) fn lay_out_parts(
         shown(sink, &mut r, &roles, coeff, key, lent);
     }
     true
+}
+
+/// Whether the part `p`, multiplied by a key of its own, is written from its lent text `l` by
+/// [`lent_group`]: the text is `p`'s, term for term (the same monomials, numbers possibly
+/// another multiple), of two terms or more (one is a product, not a group), none of which holds a
+/// parameter (that would group the terms by it) or a `q̇` or `q̈` (the side is then not laid out from
+/// its parts).
+fn copyable(p: &Poly, l: &Lent, ranks: &Ranks, roles: &[Role]) -> bool {
+    let n = p.len();
+    n >= 2
+        && l.poly.len() == n
+        && l.texts.ranges.len() == n
+        && l.texts.order.len() == n
+        && p.terms().iter().zip(l.poly.terms()).all(|(a, b)| {
+            a.0 == b.0
+                && a.0.factors().iter().all(|&(id, _)| {
+                    matches!(roles[ranks.rank(id) as usize], Role::Trig | Role::Other)
+                })
+        })
+}
+
+/// The group `(c) key` of a part that [`copyable`] accepts, written as [`lay_out_parts`] writes it
+/// (opened, its terms as [`in_lent_order`] gives them, closed by the key), each term copied from
+/// the lent text without the part's terms being split, keyed and grouped first: a large robot's
+/// equations are mostly such groups (the Franka Panda's, 2.4 MB).
+fn lent_group(
+    sink: &mut impl Sink,
+    r: &mut Renderer,
+    p: &Poly,
+    lent: Lent,
+    key: &[(u32, i32)],
+    ranks: &Ranks,
+    scratch: &mut Factors,
+) {
+    debug_assert!(p.len() >= 2, "a group, not a product");
+    sink.open(r, &[]);
+    let order = &lent.texts.order;
+    let (constant, rest) = match order.split_last() {
+        Some((&t, rest)) if p.terms()[t as usize].0.factors().is_empty() => (Some(t), rest),
+        _ => (None, &order[..]),
+    };
+    for &t in constant.iter().chain(rest) {
+        let t = t as usize;
+        let (m, c) = &p.terms()[t];
+        if *c == lent.poly.terms()[t].1 {
+            // A sink that copies ignores the factors of a whole term.
+            sink.copied(r, c, &[], Some(lent.texts.term(t)), "");
+            continue;
+        }
+        scratch.clear();
+        scratch.extend(m.factors().iter().map(|&(id, e)| (ranks.rank(id), e)));
+        scratch.sort_unstable_by_key(|&(r, _)| r);
+        sink.copied(r, c, scratch, None, lent.texts.tail(t));
+    }
+    sink.close(r, key);
 }
 
 /// The number of trig factors of a key (with multiplicity).
@@ -643,6 +757,9 @@ fn in_lent_order(sink: &mut impl Sink, r: &mut Renderer, terms: &[Coefficient], 
 /// Where the display terms of a side go, in order: products, and groups `before (…) after` opened
 /// and closed around their terms (`before`, `after`: factors, possibly none).
 pub(crate) trait Sink {
+    /// Whether [`Sink::copied`] writes a whole term's text without looking at its factors (then
+    /// [`lay_out_parts`] may write a lent group by [`lent_group`]).
+    const COPIES: bool = false;
     /// A product term `c · Π factors` (factors sorted by rank).
     fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]);
     /// Opens a group after its factors `before`.
@@ -743,6 +860,8 @@ impl Write {
 }
 
 impl Sink for Write {
+    const COPIES: bool = true;
+
     fn product(&mut self, r: &mut Renderer, c: &Rational, factors: &[(u32, i32)]) {
         self.sign(c.is_negative());
         let space = r.measured_product(&mut self.out, c, factors).spaced;
@@ -902,6 +1021,41 @@ mod tests {
             let afresh = side_text_of_parts(&parts, style).expect("plain atoms");
             assert_eq!(
                 side_text_of_parts_lent(&parts, &[lent, lent, None], style),
+                Some(afresh),
+                "{style:?}"
+            );
+        }
+        // Parts written from their lent text as one group ([`lent_group`]) beside parts that are
+        // not: two parts with the same key (one group of both), a coefficient with a parameter
+        // (grouped by it), one of a single term (a product), one multiplied by more than its key.
+        let m = p("m2*l1*cos(q2) + m2*lc2^2 + 2*cos(q1)");
+        let one = p("3/7*sin(q1)*cos(q2)");
+        let (qdd2, qd1) = (atoms("qdd2"), atoms("qd1^2"));
+        let (qdd1_qd2, qdd3_qd2) = (atoms("qdd1*qd2"), atoms("qdd3*qd2"));
+        let parts: [(&Poly, &[(AtomId, i32)]); 7] = [
+            (&c, &qdd1),
+            (&twice, &qd12),
+            (&twice, &qdd2),
+            (&c, &qdd2),
+            (&m, &qd1),
+            (&one, &qdd1_qd2),
+            (&c, &qdd3_qd2),
+        ];
+        let ranks = Ranks::of([&c, &m, &one]).expect("plain atoms");
+        for style in [Style::Text, Style::Ascii] {
+            let mut renderer = Renderer::new(&ranks, style);
+            let texts = [&c, &m, &one].map(|q| renderer.sum_with_terms(q));
+            let lend = |i: usize| {
+                Some(Lent {
+                    poly: [&c, &m, &one][i],
+                    texts: &texts[i],
+                })
+            };
+            // Each part lends the text of the coefficient it is (or is twice).
+            let lent = [0, 0, 0, 0, 1, 2, 0].map(lend);
+            let afresh = side_text_of_parts(&parts, style).expect("plain atoms");
+            assert_eq!(
+                side_text_of_parts_lent(&parts, &lent, style),
                 Some(afresh),
                 "{style:?}"
             );
