@@ -569,10 +569,24 @@ fn lent_group(
             sink.copied(r, c, &[], Some(lent.texts.term(t)), "");
             continue;
         }
+        let tail = lent.texts.tail(t);
+        // The number is written afresh and the tail copied. Of the factors, that reads only the
+        // signs of their powers, the surds and powers of π that join the number, and whether any
+        // factor is left after them: with none of the first two, any one factor stands for all
+        // (a large robot's twice-counted `c_ijk`, whose terms are most of its equations', are not
+        // ranked and sorted again).
+        let plain =
+            |&(id, e): &(AtomId, i32)| e > 0 && !matches!(atom::class(id), Class::Sqrt | Class::Pi);
+        if let [first, ..] = m.factors() {
+            if !tail.is_empty() && m.factors().iter().all(plain) {
+                sink.copied(r, c, &[(ranks.rank(first.0), first.1)], None, tail);
+                continue;
+            }
+        }
         scratch.clear();
         scratch.extend(m.factors().iter().map(|&(id, e)| (ranks.rank(id), e)));
         scratch.sort_unstable_by_key(|&(r, _)| r);
-        sink.copied(r, c, scratch, None, lent.texts.tail(t));
+        sink.copied(r, c, scratch, None, tail);
     }
     sink.close(r, key);
 }
@@ -757,7 +771,8 @@ fn in_lent_order(sink: &mut impl Sink, r: &mut Renderer, terms: &[Coefficient], 
 /// Where the display terms of a side go, in order: products, and groups `before (…) after` opened
 /// and closed around their terms (`before`, `after`: factors, possibly none).
 pub(crate) trait Sink {
-    /// Whether [`Sink::copied`] writes a whole term's text without looking at its factors (then
+    /// Whether [`Sink::copied`] writes a whole term's text without looking at its factors, and
+    /// reads the factors of a term with a tail only as [`Renderer::product_with_tail`] does (then
     /// [`lay_out_parts`] may write a lent group by [`lent_group`]).
     const COPIES: bool = false;
     /// A product term `c · Π factors` (factors sorted by rank).
