@@ -148,6 +148,32 @@ impl Rational {
         }
     }
 
+    /// `2 · self`, without a gcd: a fraction in lowest terms doubled halves an even denominator, or
+    /// doubles the numerator over an odd one (which then shares no factor 2 with it).
+    pub fn double(&self) -> Rational {
+        match self.0 {
+            Repr::Small(n, d) if d % 2 == 0 => Rational(Repr::Small(n, d / 2)),
+            Repr::Small(n, d) => match n.checked_mul(2) {
+                Some(n) => Rational(Repr::Small(n, d)),
+                None => Rational::from_reduced_i128(2 * n as i128, d as i128),
+            },
+            Repr::Big(_) => self * &Rational::int(2),
+        }
+    }
+
+    /// `self / 2`, without a gcd: a fraction in lowest terms halved halves an even numerator, or
+    /// doubles the denominator under an odd one (which then shares no factor 2 with it).
+    pub fn half(&self) -> Rational {
+        match self.0 {
+            Repr::Small(n, d) if n % 2 == 0 => Rational(Repr::Small(n / 2, d)),
+            Repr::Small(n, d) => match d.checked_mul(2) {
+                Some(d) => Rational(Repr::Small(n, d)),
+                None => Rational::from_reduced_i128(n as i128, 2 * d as i128),
+            },
+            Repr::Big(_) => self * &Rational::new(1, 2).expect("a denominator of 2"),
+        }
+    }
+
     /// Whether this is zero.
     pub fn is_zero(&self) -> bool {
         matches!(self.0, Repr::Small(0, _))
@@ -629,6 +655,28 @@ pub fn split_square(n: &BigInt) -> (BigInt, BigInt) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Doubling and halving without a gcd give the products by 2 and ½, in lowest terms and in the
+    /// same representation: zero, units, even and odd numerators and denominators, both signs,
+    /// the ends of 64 bits (where the result no longer fits) and a big fraction.
+    #[test]
+    fn doubling_and_halving_are_the_products_by_two_and_a_half() {
+        let (two, half) = (Rational::int(2), r(1, 2));
+        let big = Rational::from_bigints(BigInt::from(i64::MAX) * 3, BigInt::from(7)).unwrap();
+        let mut values = vec![Rational::zero(), Rational::one(), big.clone(), -&big];
+        for n in [1, 2, 3, 6, 9, 1 << 40, i64::MAX, i64::MAX - 1, i64::MIN + 1] {
+            for d in [1, 2, 4, 5, 12, 3 << 30, i64::MAX, i64::MAX - 1] {
+                if let Some(q) = Rational::new(n, d) {
+                    values.push(-&q);
+                    values.push(q);
+                }
+            }
+        }
+        for q in &values {
+            assert_eq!(q.double(), q * &two, "2 · {q}");
+            assert_eq!(q.half(), q * &half, "{q} / 2");
+        }
+    }
 
     fn r(n: i64, d: i64) -> Rational {
         Rational::new(n, d).unwrap()

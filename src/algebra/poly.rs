@@ -352,8 +352,14 @@ impl Poly {
         if c.is_one() {
             return self.clone();
         }
+        // Doubling and halving need no gcd (the Christoffel symbols' ½, the equations' 2 c_ijk).
+        let by: &dyn Fn(&Rational) -> Rational = match c.as_small() {
+            Some((2, 1)) => &Rational::double,
+            Some((1, 2)) => &Rational::half,
+            _ => &|k| k * c,
+        };
         Poly {
-            terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect(),
+            terms: self.terms.iter().map(|(m, k)| (m.clone(), by(k))).collect(),
         }
     }
 
