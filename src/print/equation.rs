@@ -510,12 +510,7 @@ pub(crate) fn lay_out_parts<S: Sink>(
                 && members
                     .iter()
                     .all(|&i| splits[i as usize].part as usize == part)
-                && l.poly.len() == p.len()
-                && l.texts.ranges.len() == p.len()
-                && p.terms()
-                    .iter()
-                    .zip(l.poly.terms())
-                    .all(|(a, b)| a.0 == b.0)
+                && text_of(l, p)
         });
         shown(sink, &mut r, &roles, coeff, key, lent);
     }
@@ -528,17 +523,24 @@ pub(crate) fn lay_out_parts<S: Sink>(
 /// parameter (that would group the terms by it) or a `q̇` or `q̈` (the side is then not laid out from
 /// its parts).
 fn copyable(p: &Poly, l: &Lent, ranks: &Ranks, roles: &[Role]) -> bool {
-    let n = p.len();
-    n >= 2
-        && l.poly.len() == n
-        && l.texts.ranges.len() == n
-        && l.texts.order.len() == n
-        && p.terms().iter().zip(l.poly.terms()).all(|(a, b)| {
-            a.0 == b.0
-                && a.0.factors().iter().all(|&(id, _)| {
-                    matches!(roles[ranks.rank(id) as usize], Role::Trig | Role::Other)
-                })
+    p.len() >= 2
+        && l.texts.order.len() == p.len()
+        && text_of(l, p)
+        && p.terms().iter().all(|(m, _)| {
+            m.factors()
+                .iter()
+                .all(|&(id, _)| matches!(roles[ranks.rank(id) as usize], Role::Trig | Role::Other))
         })
+}
+
+/// Whether `l`'s text is `p`'s, term for term: the same monomials, each number possibly another.
+fn text_of(l: &Lent, p: &Poly) -> bool {
+    l.poly.len() == p.len()
+        && l.texts.ranges.len() == p.len()
+        && p.terms()
+            .iter()
+            .zip(l.poly.terms())
+            .all(|(a, b)| a.0 == b.0)
 }
 
 /// The group `(c) key` of a part that [`copyable`] accepts, written as [`lay_out_parts`] writes it
