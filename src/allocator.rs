@@ -8,7 +8,9 @@
 //! `Vec` of them, a `String`: nearly all) takes plain `mi_malloc`, `mi_zalloc` and `mi_realloc`;
 //! a larger alignment keeps the aligned entry points. Freeing is `mi_free` for both.
 //!
-//! This is the crate's only `unsafe` code: the `GlobalAlloc` contract, passed straight to mimalloc.
+//! One of the crate's two places of `unsafe` code (the other is `parallel::pool`, which lends
+//! borrowed work to kept threads and sets their cores): the `GlobalAlloc` contract, passed
+//! straight to mimalloc.
 
 use libmimalloc_sys as mi;
 use std::alloc::{GlobalAlloc, Layout};

@@ -413,6 +413,14 @@ pub fn run(args: Args) -> Result<String, CliError> {
         no_snap: args.no_snap,
     });
     derive_cmds::set_extras(args.extras);
+    // The commands that share their work among threads on a large enough robot start their
+    // helpers now, while the scene is read (see `parallel::pool::start_early`).
+    if matches!(
+        args.command,
+        Command::Derive { .. } | Command::Check { .. } | Command::Sheet { .. }
+    ) {
+        symdyn::parallel::pool::start_early();
+    }
     match args.command {
         Command::Derive {
             scene,

@@ -160,12 +160,7 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
         let ahead = opts.frames.contains(&Frame::Inertial)
             && der.robot().revolute_joints() >= 3
             && crate::parallel::threads() >= 2;
-        return std::thread::scope(|scope| {
-            if ahead {
-                scope.spawn(|| {
-                    der.newton_euler(Frame::Inertial);
-                });
-            }
+        let rest = || {
             let mut claims: Vec<Claim> = opts
                 .frames
                 .iter()
@@ -176,7 +171,17 @@ pub fn check_with(der: &Derivation, opts: &CheckOptions) -> Vec<Claim> {
                 .collect();
             claims.extend(identities(der));
             claims
-        });
+        };
+        if !ahead {
+            return rest();
+        }
+        return crate::parallel::join(
+            || {
+                der.newton_euler(Frame::Inertial);
+            },
+            rest,
+        )
+        .1;
     }
     randomized(der, opts)
 }

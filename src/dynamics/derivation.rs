@@ -11,7 +11,8 @@ use super::model::{JointKind, ModelError, Robot};
 use super::ne_symbolic::{self, Frame};
 use super::newton_euler::NewtonEuler;
 use crate::algebra::{Expr, Poly, Symbol};
-use std::sync::{Arc, OnceLock};
+use crate::parallel::Shared;
+use std::sync::Arc;
 
 /// The default limit of [`Derivation::expansion_fits`], in terms of one entry of the expanded `D(q)`.
 ///
@@ -47,16 +48,16 @@ pub struct Derivation {
     robot: Robot,
     joints: Vec<JointFrame>,
     rotates: Vec<bool>,
-    kin: OnceLock<Kinematics>,
-    mass: OnceLock<MassMatrix>,
-    christoffel: OnceLock<Arc<Christoffel>>,
-    motion: OnceLock<Motion>,
-    left_sides: OnceLock<Arc<Vec<Poly>>>,
-    coriolis: OnceLock<Arc<Vec<Vec<Poly>>>>,
-    lagrange: OnceLock<Lagrange>,
-    ne_body: OnceLock<NewtonEuler<Poly>>,
-    ne_inertial: OnceLock<NewtonEuler<Poly>>,
-    compact: OnceLock<CompactDynamics>,
+    kin: Shared<Kinematics>,
+    mass: Shared<MassMatrix>,
+    christoffel: Shared<Arc<Christoffel>>,
+    motion: Shared<Motion>,
+    left_sides: Shared<Arc<Vec<Poly>>>,
+    coriolis: Shared<Arc<Vec<Vec<Poly>>>>,
+    lagrange: Shared<Lagrange>,
+    ne_body: Shared<NewtonEuler<Poly>>,
+    ne_inertial: Shared<NewtonEuler<Poly>>,
+    compact: Shared<CompactDynamics>,
 }
 
 /// One equation of motion: `lhs = input`.
@@ -85,16 +86,16 @@ impl Derivation {
             robot,
             joints,
             rotates,
-            kin: OnceLock::new(),
-            mass: OnceLock::new(),
-            christoffel: OnceLock::new(),
-            motion: OnceLock::new(),
-            left_sides: OnceLock::new(),
-            coriolis: OnceLock::new(),
-            lagrange: OnceLock::new(),
-            ne_body: OnceLock::new(),
-            ne_inertial: OnceLock::new(),
-            compact: OnceLock::new(),
+            kin: Shared::new(),
+            mass: Shared::new(),
+            christoffel: Shared::new(),
+            motion: Shared::new(),
+            left_sides: Shared::new(),
+            coriolis: Shared::new(),
+            lagrange: Shared::new(),
+            ne_body: Shared::new(),
+            ne_inertial: Shared::new(),
+            compact: Shared::new(),
         })
     }
 

@@ -517,7 +517,7 @@ impl Robot {
     }
 
     /// The number of revolute joints. Below three, a robot's derivations and proofs take less
-    /// time than a thread takes to start, so they are not shared out.
+    /// time than sharing them out costs, so they are not shared out.
     pub fn revolute_joints(&self) -> usize {
         self.joints
             .iter()

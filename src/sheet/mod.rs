@@ -102,7 +102,7 @@ const EXPANDED_TERMS: usize = 24;
 /// expanded to find out).
 ///
 /// A robot of at most [`EXPANDED_FIRST`] joints is decided on its expanded `D` instead (the same
-/// entries, so the same answer): the expanded sheet needs it anyway, and the proof thread derives
+/// entries, so the same answer): the expanded sheet needs it anyway, and the helper proving derives
 /// the compact form meanwhile instead of after it.
 fn compact_mode(der: &Derivation) -> bool {
     if der.robot().dof() <= EXPANDED_FIRST {
@@ -128,16 +128,16 @@ const NOTATION: &str = "%%NOTATION%%\n";
 /// The complete LaTeX document of the solution sheet of `der`.
 pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // The proofs of the last section take about as long as all the others on a large robot, and
-    // depend on nothing they print: they run on a thread of their own meanwhile. The display forms
-    // of the Newton–Euler vectors (most of an expanded sheet's work) are tidied on threads of their
-    // own from the start too, while the scene and Euler–Lagrange sections are written, in the order
-    // the sections print them, each laid out as soon as it is tidied. That thread starts first,
-    // since it is the longest (the SCARA arm's sheet, measured: 15.2 → 13.7 ms, its tidying no
-    // longer waiting for the expanded D of `compact_mode` on this thread; 14.2 → 13.0 ms more with
-    // the layout following the tidying vector by vector instead of after all of it). Neither when
-    // the display layer is held to one thread (`parallel::set_threads`) or the robot has fewer than
-    // three revolute joints: the PPP, RPP and elbow arms prove and tidy in less time than a thread
-    // takes to start.
+    // depend on nothing they print; the display forms of the Newton–Euler vectors are most of an
+    // expanded sheet's work, and independent of each other. So the helper threads of the pool
+    // (`parallel::pool`, one on two cores) take the proofs first, then tidy the vectors heaviest
+    // first, while this thread writes the scene and Euler–Lagrange sections and then lays the
+    // vectors out in order, tidying the next ones itself whenever the one it is due to print is
+    // not ready (the SCARA arm's sheet, interleaved, 60 runs: 8.45 → 7.52 ms, with the thread that
+    // tidied in print order and the proof thread started for the sheet instead; the Stanford arm's
+    // 18.7 → 16.3 ms). Neither when the display layer is held to one thread
+    // (`parallel::set_threads`) or the robot has fewer than three revolute joints: the PPP, RPP
+    // and elbow arms prove and tidy in less time than sharing the work costs.
     let full = opts.scope == Scope::Full;
     let frames = opts.frames();
     if crate::parallel::threads() < 2 || der.robot().revolute_joints() < 3 {
@@ -157,52 +157,65 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         );
     }
     // Decided once, by whichever thread asks first (an arm of up to four joints reads its
-    // expanded D); the vectors likewise, listed by the tidying thread or, should it not have
-    // started, by the layout.
-    let compact = std::sync::OnceLock::new();
+    // expanded D); the vectors likewise, listed by a helper or by the layout.
+    let compact = crate::parallel::Shared::new();
     let compact = &compact;
-    let vectors: std::sync::OnceLock<Option<newton_euler::Tidied>> = std::sync::OnceLock::new();
+    let vectors: crate::parallel::Shared<Option<newton_euler::Tidied>> =
+        crate::parallel::Shared::new();
     let vectors = &vectors;
-    std::thread::scope(|scope| {
-        let is_compact = move || *compact.get_or_init(|| compact_mode(der));
-        let frames = &frames;
-        let listed = move || {
-            vectors.get_or_init(|| (!is_compact()).then(|| newton_euler::Tidied::new(der, frames)))
-        };
-        // The tidying is the longest of the three: it starts first, and the layout takes each
-        // vector as it is tidied, tidying the next ones itself while one it is due to print is
-        // not ready.
-        if !frames.is_empty() {
-            scope.spawn(move || {
-                if let Some(t) = listed() {
-                    t.work_beside_layout();
-                }
-            });
-        }
-        // The proofs take the body-frame Newton–Euler τ the sheet derives, expanded, when it does.
-        // They need the inertial frame's recursion too, which the tidying thread would otherwise
-        // derive after the body frame's before tidying any vector: this thread derives it
-        // meanwhile. With the layout tidying while it would wait (`Tidied::get`), the SCARA arm's
-        // sheet, measured in 61 interleaved runs: 9.7 → 9.1 ms; the Stanford arm's 19.3 → 18.8 ms.
-        let proofs = full.then(|| {
-            scope.spawn(move || {
-                let expanded = !is_compact();
-                if expanded && frames.contains(&Frame::Inertial) {
-                    der.newton_euler(Frame::Inertial);
-                }
-                agreement(der, expanded && frames.contains(&Frame::Body))
-            })
-        });
-        let proofs = move || proofs.map(|h| h.join().expect("the proof thread does not panic"));
-        let tidied = move || {
-            if frames.is_empty() {
-                None
-            } else {
-                listed().as_ref()
+    let is_compact = || *compact.get_or_init(|| compact_mode(der));
+    let frames = &frames;
+    let listed =
+        || vectors.get_or_init(|| (!is_compact()).then(|| newton_euler::Tidied::new(der, frames)));
+    // The proofs, by the first helper that comes to them, or by this thread at the end if none did.
+    let claimed = std::sync::atomic::AtomicBool::new(false);
+    let proved: crate::parallel::Shared<Option<String>> = crate::parallel::Shared::new();
+    let prove = || {
+        // Set to `None` if the proofs panic, so that the layout does not wait for ever.
+        struct Failed<'a>(&'a crate::parallel::Shared<Option<String>>);
+        impl Drop for Failed<'_> {
+            fn drop(&mut self) {
+                let _ = self.0.set(None);
             }
-        };
+        }
+        let failed = Failed(&proved);
+        let expanded = !is_compact();
+        if expanded && frames.contains(&Frame::Inertial) {
+            der.newton_euler(Frame::Inertial);
+        }
+        let text = agreement(der, expanded && frames.contains(&Frame::Body));
+        std::mem::forget(failed);
+        let _ = proved.set(Some(text));
+    };
+    let helper = || {
+        if full && !claimed.swap(true, std::sync::atomic::Ordering::Relaxed) {
+            prove();
+        }
+        if !frames.is_empty() {
+            if let Some(t) = listed() {
+                t.take_all();
+            }
+        }
+    };
+    let proofs = || {
+        full.then(|| {
+            if !claimed.swap(true, std::sync::atomic::Ordering::Relaxed) {
+                prove();
+            }
+            proved.wait().clone().expect("the proofs do not panic")
+        })
+    };
+    let tidied = || {
+        if frames.is_empty() {
+            None
+        } else {
+            listed().as_ref()
+        }
+    };
+    crate::parallel::pool::scope(crate::parallel::threads() - 1, &helper, || {
         document(der, opts, is_compact, tidied, proofs)
     })
+    .0
 }
 
 /// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` (waited for

@@ -40,10 +40,13 @@ pub(super) struct Tidied<'d> {
     earlier: Vec<[Option<(usize, usize)>; 3]>,
     /// Each vector's display form once tidied (`Err` once a worker panicked).
     slots: Vec<OnceLock<Result<PreparedVector, ()>>>,
-    /// The next job to take.
-    next: AtomicUsize,
-    /// Whether the layout has come to the vectors (and tidies when one is not ready).
-    layout_arrived: AtomicBool,
+    /// Whether a thread took each job.
+    taken: Vec<AtomicBool>,
+    /// The jobs, heaviest first (by [`weight_of`], equal ones in order): the helpers'
+    /// order, so that the longest vectors, printed last, are not left to the end.
+    heaviest: Vec<usize>,
+    /// Where in `heaviest` the helpers look for a job not taken yet.
+    next_heavy: AtomicUsize,
     /// Each job's place, by frame and name.
     place: HashMap<(Frame, String), usize>,
 }
@@ -85,12 +88,15 @@ impl<'d> Tidied<'d> {
             .enumerate()
             .map(|(j, (frame, name, _))| ((*frame, name.clone()), j))
             .collect();
+        let mut heaviest: Vec<usize> = (0..jobs.len()).collect();
+        heaviest.sort_by_key(|&j| std::cmp::Reverse(weight_of(jobs[j].2)));
         Tidied {
             slots: jobs.iter().map(|_| OnceLock::new()).collect(),
+            taken: jobs.iter().map(|_| AtomicBool::new(false)).collect(),
+            heaviest,
             jobs,
             earlier,
-            next: AtomicUsize::new(0),
-            layout_arrived: AtomicBool::new(false),
+            next_heavy: AtomicUsize::new(0),
             place,
         }
     }
@@ -98,69 +104,43 @@ impl<'d> Tidied<'d> {
     /// Tidies the vectors on up to [`crate::parallel::threads`] threads (tidying costs about the
     /// square of a component's terms; below ~100 000 in all, on this thread), until none is left.
     pub(super) fn work(&self) {
-        crate::parallel::share(self.weight(), 100_000, || self.take());
+        let total = self.jobs.iter().map(|(_, _, v)| weight_of(v)).sum();
+        crate::parallel::share(total, 100_000, || self.take_all());
     }
 
-    /// Tidies the vectors on this thread, on as many more as leave one thread for the layout, and,
-    /// until the layout comes to its first vector, on one more. The layout tidies too whenever a
-    /// vector it is due to print is not ready ([`Tidied::get`]). So the machine's threads compute
-    /// and no more: a thread more than cores left another waiting for a core (the SCARA arm's
-    /// sheet, whose layout comes to the vectors before they are listed: vectors took up to twice
-    /// their time), while the Stanford arm's tidying would be one thread short all through the
-    /// Euler–Lagrange section.
-    pub(super) fn work_beside_layout(&self) {
-        let threads = crate::parallel::threads();
-        let helpers = if self.weight() < crate::parallel::WORTH_SHARING {
-            0
-        } else {
-            threads.saturating_sub(1)
-        };
-        if helpers == 0 || self.layout_arrived.load(Ordering::Relaxed) {
-            self.take();
-            return;
-        }
-        std::thread::scope(|scope| {
-            for h in 0..helpers {
-                // The last helper stands for the layout's thread, until it arrives.
-                let until_layout = h + 1 == helpers;
-                scope.spawn(move || {
-                    while !(until_layout && self.layout_arrived.load(Ordering::Relaxed)) {
-                        if !self.take_one() {
-                            break;
-                        }
-                    }
-                });
+    /// Tidies the vectors not taken yet on this thread, heaviest first, until none is left (beside
+    /// the layout, which tidies too, in order, whenever a vector it is due to print is not ready:
+    /// [`Tidied::get`]).
+    pub(super) fn take_all(&self) {
+        loop {
+            let k = self.next_heavy.fetch_add(1, Ordering::Relaxed);
+            let Some(&j) = self.heaviest.get(k) else {
+                return;
+            };
+            if self.claim(j) {
+                self.tidy(j);
             }
-            self.take();
-        });
+        }
     }
 
-    /// The estimated cost of tidying every vector: about the square of each component's terms.
-    fn weight(&self) -> usize {
-        self.jobs
-            .iter()
-            .map(|(_, _, v)| v.0.iter().map(|c| c.len() * c.len()).sum::<usize>())
-            .sum()
+    /// Whether this thread is the one to tidy job `j`.
+    fn claim(&self, j: usize) -> bool {
+        !self.taken[j].swap(true, Ordering::AcqRel)
     }
 
-    /// Takes vectors in order and tidies each until none is left.
-    fn take(&self) {
-        while self.take_one() {}
-    }
-
-    /// Takes the next vector not taken yet and tidies it; `false` when none is left.
-    fn take_one(&self) -> bool {
-        let j = self.next.fetch_add(1, Ordering::Relaxed);
-        let Some((_, name, v)) = self.jobs.get(j) else {
-            return false;
-        };
+    /// Tidies job `j`, claimed by this thread. A component met before is the display form of
+    /// the job that met it: tidied here first if no thread took that job yet, waited for
+    /// otherwise. A job only waits for jobs before it, each of which is being tidied by a thread
+    /// that waits only for jobs before that, so the waits always end.
+    fn tidy(&self, j: usize) {
+        let (_, name, v) = &self.jobs[j];
         let prepared = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             let shown: Vec<Expr> =
                 v.0.iter()
                     .zip(&self.earlier[j])
                     .map(|(c, before)| match before {
                         None => c.tidy_by(Grouping::Leading),
-                        Some((i, k)) => self.wait(*i).shown()[*k].clone(),
+                        Some((i, k)) => self.ready(*i).shown()[*k].clone(),
                     })
                     .collect();
             PreparedVector::new(name, shown)
@@ -168,7 +148,6 @@ impl<'d> Tidied<'d> {
         match prepared {
             Ok(p) => {
                 let _ = self.slots[j].set(Ok(p));
-                true
             }
             Err(panic) => {
                 // Whoever waits for this vector or any not tidied yet (the layout, a later
@@ -181,24 +160,42 @@ impl<'d> Tidied<'d> {
         }
     }
 
-    /// Job `j`'s display form, once tidied.
-    fn wait(&self, j: usize) -> &PreparedVector {
-        self.slots[j]
-            .wait()
+    /// Job `j`'s display form: tidied here if no thread took it yet, waited for otherwise.
+    fn ready(&self, j: usize) -> &PreparedVector {
+        if self.slots[j].get().is_none() && self.claim(j) {
+            self.tidy(j);
+        }
+        crate::parallel::wait_for(&self.slots[j])
             .as_ref()
             .expect("tidying a Newton–Euler vector does not panic")
     }
 
     /// The display form of `name` in `frame`, once tidied; `None` for a vector not tidied here.
-    /// While it is not ready, this thread tidies the next vectors not taken yet, and waits only
-    /// when every one is taken. Each job waits only for earlier ones (a component met before), so
-    /// the lowest job in progress never waits, and neither does the layout for ever.
+    /// While another thread tidies it, this one tidies the next vectors in print order that no
+    /// thread took yet (the ones it is due to print next), and waits only when there is none.
     fn get(&self, frame: Frame, name: &str) -> Option<PreparedVector> {
         let &j = self.place.get(&(frame, name.to_string()))?;
-        self.layout_arrived.store(true, Ordering::Relaxed);
-        while self.slots[j].get().is_none() && self.take_one() {}
-        Some(self.wait(j).clone())
+        let mut next = j + 1;
+        while self.slots[j].get().is_none() {
+            if self.claim(j) {
+                self.tidy(j);
+                break;
+            }
+            match (next..self.jobs.len()).find(|&k| self.claim(k)) {
+                Some(k) => {
+                    self.tidy(k);
+                    next = k + 1;
+                }
+                None => break,
+            }
+        }
+        Some(self.ready(j).clone())
     }
+}
+
+/// The estimated cost of tidying a vector: about the square of each component's terms.
+fn weight_of(v: &Vec3<Poly>) -> usize {
+    v.0.iter().map(|c| c.len() * c.len()).sum()
 }
 
 /// The vectors a section prints for `frame`, with their names, in the order it prints them: the
@@ -466,9 +463,9 @@ mod tests {
     /// Tidying each distinct component once (on the workers of `Tidied::work`, a repeated one
     /// waiting for its first) gives every vector what tidying it alone gives, on arms whose vectors
     /// repeat components (the gravity vectors in the inertial frame); so does tidying beside the
-    /// layout (`Tidied::work_beside_layout` on a thread of its own while this one asks for each
-    /// vector in order and tidies the next ones whenever it would wait), and the layout tidying
-    /// every vector itself.
+    /// layout (`Tidied::take_all` on a thread of its own, heaviest first, while this one asks for
+    /// each vector in order and tidies the next ones whenever it would wait), and the layout
+    /// tidying every vector itself.
     #[test]
     fn components_met_before_are_shown_as_when_tidied_alone() {
         for name in ["rpp", "scara"] {
@@ -482,7 +479,7 @@ mod tests {
             let beside = Tidied::new(&der, &frames);
             let by_layout = Tidied::new(&der, &frames);
             std::thread::scope(|scope| {
-                scope.spawn(|| beside.work_beside_layout());
+                scope.spawn(|| beside.take_all());
                 let mut seen = std::collections::HashSet::new();
                 let mut repeated = 0;
                 for frame in frames {

@@ -41,7 +41,14 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
     fn lock(&self) -> MutexGuard<'_, FxHashMap<K, V>> {
         // A thread that panicked while holding the lock left the map whole (inserts are single
         // calls): its contents stay good.
-        self.0.lock().unwrap_or_else(|p| p.into_inner())
+        // Yielding rather than sleeping while another thread holds it (see `parallel::shared`).
+        loop {
+            match self.0.try_lock() {
+                Ok(guard) => return guard,
+                Err(std::sync::TryLockError::Poisoned(p)) => return p.into_inner(),
+                Err(std::sync::TryLockError::WouldBlock) => std::thread::yield_now(),
+            }
+        }
     }
 }
 

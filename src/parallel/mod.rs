@@ -1,8 +1,13 @@
 //! Deterministic work sharing: [`map`] applies a pure function to many items on a few threads and
 //! returns the results in the items' order, so whatever is built or printed from them is the same on
 //! any number of threads; [`share`] runs a worker loop on a few threads, for work whose results
-//! are taken one by one as they are ready (the sheet's vectors). The derivation ([`crate::dynamics::lagrange`]: the Christoffel symbols, `τ`,
-//! `C`) and the display layer ([`crate::print::parallel`]) share it.
+//! are taken one by one as they are ready (the sheet's vectors); [`join`] runs two closures side
+//! by side. The derivation ([`crate::dynamics::lagrange`]: the Christoffel symbols, `τ`, `C`), the
+//! checks and the display layer ([`crate::print::parallel`]) share it. The calling thread always
+//! takes a share of the work; the others are the helper threads of [`pool`], started once and
+//! kept, and a value several threads wait for is a [`Shared`], waited for without sleeping (both
+//! for the same reason: a thread started or woken here ran on its waker's core for up to a
+//! millisecond, see [`pool`]).
 //!
 //! What may run here must be pure. It may intern new atoms only where their ids order nothing that
 //! is printed or generated (see [`crate::algebra::atom`]): tidying and printing, which order
@@ -10,8 +15,13 @@
 //! `q̇` and `q̈`, derivatives of `sin` and `cos`, whose partner atom is computed, not interned), so
 //! the polynomials they build, term order included, do not depend on the threads.
 
+pub mod pool;
+mod shared;
+
+pub use shared::{wait_for, Shared};
+
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 /// The most threads a job uses by default.
 const MAX_THREADS: usize = 4;
@@ -58,8 +68,8 @@ pub fn serially<R>(f: impl FnOnce() -> R) -> R {
 /// (an estimate of each item's cost) sums to at least `min_total`; on the calling thread otherwise,
 /// and always inside [`serially`].
 /// Threads take items heaviest first, one at a time, so a few large items do not leave a thread idle.
-/// Starting a thread costs a few hundred microseconds here (its stack and allocator heap), so
-/// `min_total` should stand for about that much work.
+/// Lending work to a helper and taking the results back costs some tens of microseconds, so
+/// `min_total` should stand for more work than that.
 pub fn map<T: Sync, R: Send>(
     items: &[T],
     weight: impl Fn(&T) -> usize,
@@ -79,7 +89,8 @@ pub fn map<T: Sync, R: Send>(
     let mut order: Vec<usize> = (0..items.len()).collect();
     order.sort_by(|&a, &b| weights[b].cmp(&weights[a]));
     let next = AtomicUsize::new(0);
-    let (order, next, f) = (&order, &next, &f);
+    let done: Mutex<Vec<(usize, R)>> = Mutex::new(Vec::with_capacity(items.len()));
+    let (order, next, f, all) = (&order, &next, &f, &done);
     let take = move || {
         let mut mine = Vec::new();
         loop {
@@ -87,20 +98,10 @@ pub fn map<T: Sync, R: Send>(
             let Some(&i) = order.get(k) else { break };
             mine.push((i, f(&items[i])));
         }
-        mine
+        all.lock().unwrap_or_else(|p| p.into_inner()).extend(mine);
     };
-    // The calling thread only waits: a thread it starts often begins on its core, and would share
-    // it for a while if the caller kept working (measured: the numeric PUMA 560's equations took
-    // 30% longer in most runs).
-    let mut done: Vec<(usize, R)> = std::thread::scope(|scope| {
-        let helpers: Vec<_> = (0..threads.min(items.len()))
-            .map(|_| scope.spawn(take))
-            .collect();
-        helpers
-            .into_iter()
-            .flat_map(|h| h.join().expect("a worker thread does not panic"))
-            .collect()
-    });
+    pool::scope(threads - 1, &take, take);
+    let mut done = done.into_inner().unwrap_or_else(|p| p.into_inner());
     done.sort_by_key(|&(i, _)| i);
     done.into_iter().map(|(_, r)| r).collect()
 }
@@ -108,18 +109,41 @@ pub fn map<T: Sync, R: Send>(
 /// Runs `work` on up to [`threads`] threads at once, each its own call (`work` takes its items from
 /// a queue of its own until none is left), when `total`, the work's estimated weight as for [`map`],
 /// is at least `min_total`; once on the calling thread otherwise, and always inside [`serially`].
-/// The calling thread only waits, as in [`map`].
+/// The calling thread runs `work` too.
 pub fn share(total: usize, min_total: usize, work: impl Fn() + Sync) {
     let threads = threads();
     if total < min_total || threads < 2 || SERIAL.with(|s| s.get()) {
         work();
         return;
     }
-    std::thread::scope(|scope| {
-        for _ in 0..threads {
-            scope.spawn(&work);
+    pool::scope(threads - 1, &work, &work);
+}
+
+/// `a()` and `b()`: `a` on a helper thread ([`pool`]) while this thread runs `b`, when there is one
+/// to spare and [`threads`] allows two or more outside [`serially`]; `a` after `b` on this thread
+/// otherwise. A panic in either reaches the caller once both have stopped.
+pub fn join<A: Send, B>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B) -> (A, B) {
+    if threads() < 2 || SERIAL.with(|s| s.get()) {
+        let rb = b();
+        return (a(), rb);
+    }
+    let a = Mutex::new(Some(a));
+    let out = Mutex::new(None);
+    let work = || {
+        let a = a.lock().unwrap_or_else(|p| p.into_inner()).take();
+        if let Some(a) = a {
+            let r = a();
+            *out.lock().unwrap_or_else(|p| p.into_inner()) = Some(r);
         }
-    });
+    };
+    let (rb, _) = pool::scope(1, &work, b);
+    // Not taken by a helper (none to spare): here.
+    work();
+    let ra = out
+        .into_inner()
+        .unwrap_or_else(|p| p.into_inner())
+        .expect("`a` ran, on a helper or here");
+    (ra, rb)
 }
 
 /// `f` of every item, given to `consume` on the calling thread in the items' order as soon as it
@@ -129,7 +153,8 @@ pub fn share(total: usize, min_total: usize, work: impl Fn() + Sync) {
 /// the workers compute at most `AHEAD` (four) items per thread past the last one consumed, so
 /// that only a few results are held at a time however slow the consumer (a pipe to a slow
 /// reader): for a document of megabytes written as it is printed (memory touched for the first
-/// time costs more here than the printing). The calling thread only consumes.
+/// time costs more here than the printing). The calling thread consumes, and computes the next
+/// item no thread took whenever the one it is due to consume is not ready.
 pub fn map_in_order<T: Sync, R: Send>(
     items: &[T],
     weight: impl Fn(&T) -> usize,
@@ -195,23 +220,31 @@ pub fn map_in_order<T: Sync, R: Send>(
             state.1.notify_all();
         }
     };
-    std::thread::scope(|scope| {
-        for _ in 0..threads.min(items.len()) {
-            scope.spawn(work);
-        }
+    // The calling thread consumes, and computes the next item not taken whenever the one it is
+    // due to consume is not ready.
+    pool::scope(threads - 1, &work, || {
         // A consumer that panics stops the workers too.
         let _alarm = Alarm(state);
         for i in 0..items.len() {
-            let mut ready = state.0.lock().expect("a worker does not panic");
             let r = loop {
+                let mut ready = state.0.lock().expect("a worker does not panic");
                 if let Some(r) = ready.results[i].take() {
+                    ready.consumed = i + 1;
                     break r;
                 }
                 assert!(!ready.failed, "a worker thread does not panic");
-                ready = state.1.wait(ready).expect("a worker does not panic");
+                drop(ready);
+                let j = next.fetch_add(1, Ordering::Relaxed);
+                if let Some(item) = items.get(j) {
+                    let r = f(item);
+                    state.0.lock().expect("a worker does not panic").results[j] = Some(r);
+                    continue;
+                }
+                let mut ready = state.0.lock().expect("a worker does not panic");
+                while ready.results[i].is_none() && !ready.failed {
+                    ready = state.1.wait(ready).expect("a worker does not panic");
+                }
             };
-            ready.consumed = i + 1;
-            drop(ready);
             state.1.notify_all();
             consume(i, r);
         }
@@ -222,7 +255,7 @@ pub fn map_in_order<T: Sync, R: Send>(
 const AHEAD: usize = 4;
 
 /// About a third of a millisecond of work (the items' weights, in units of about 3 ns): below it
-/// a job stays on the calling thread, since starting a thread costs a few hundred microseconds here.
+/// a job stays on the calling thread, whose share would be most of it.
 pub const WORTH_SHARING: usize = 100_000;
 
 #[cfg(test)]
