@@ -10,7 +10,7 @@
 //!
 //! One of the crate's two places of `unsafe` code (the other is `parallel::pool`, which lends
 //! borrowed work to kept threads and sets their cores): the `GlobalAlloc` contract, passed
-//! straight to mimalloc.
+//! straight to mimalloc, and [`exit`], which ends the process without mimalloc's clean-up.
 
 use libmimalloc_sys as mi;
 use std::alloc::{GlobalAlloc, Layout};
@@ -57,6 +57,18 @@ unsafe impl GlobalAlloc for Mimalloc {
             mi::mi_realloc_aligned(ptr as *mut c_void, new_size, layout.align()) as *mut u8
         }
     }
+}
+
+/// Ends the process with `code` at once, without the clean-up of `exit(3)`: mimalloc, linked
+/// statically, frees every page it holds when the process ends (`mi_process_done`), which the
+/// kernel does anyway as the process goes (interleaved, 30 runs: the Franka Panda's JSON 24.1 →
+/// 22.0 ms, the SCARA arm's `check` 4.9 → 4.0 ms). For the binary's last step only, once
+/// everything is written and flushed.
+pub fn exit(code: u8) -> ! {
+    // Whatever Rust's line-buffered stdout still holds (a prompt without its line end).
+    let _ = std::io::Write::flush(&mut std::io::stdout());
+    // SAFETY: `_exit` ends the process; it takes any status and has no other precondition.
+    unsafe { libc::_exit(i32::from(code)) }
 }
 
 #[cfg(test)]

@@ -9,15 +9,16 @@ mod cli;
 #[global_allocator]
 static ALLOCATOR: symdyn::allocator::Mimalloc = symdyn::allocator::Mimalloc;
 
-use std::process::ExitCode;
-
-fn main() -> ExitCode {
+fn main() {
     let args = <cli::Args as clap::Parser>::parse();
-    match cli::run(args).and_then(|output| cli::output::stdout(&output)) {
-        Ok(()) | Err(cli::CliError::StdoutClosed) => ExitCode::SUCCESS,
+    let code = match cli::run(args).and_then(|output| cli::output::stdout(&output)) {
+        Ok(()) | Err(cli::CliError::StdoutClosed) => 0,
         Err(err) => {
             cli::output::stderr_line(&err.to_string());
-            ExitCode::from(err.exit_code())
+            err.exit_code()
         }
-    }
+    };
+    // Everything is written (stdout flushed by `cli::output`, stderr unbuffered, files closed):
+    // the process ends here, without the allocator's clean-up at exit.
+    symdyn::allocator::exit(code)
 }

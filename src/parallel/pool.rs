@@ -5,12 +5,13 @@
 //! measured): starting a thread took 50–150 µs, and a new or woken thread was nearly always put on
 //! the core of the thread that started or woke it, where it waited for that thread's time slice
 //! (0.5–1.2 ms) while the other core stayed idle, so work of a millisecond or two ran on one core.
-//! Kept threads are started once; and while [`scope`] does its own share of the work it keeps its
-//! thread on its core and allows the helpers it lent work to only the other cores (their
-//! affinity, `sched_setaffinity(2)`, Linux only: elsewhere the kernel places them), so a helper
-//! starts within about 60 µs on an idle core, and a wake-up (a lock, a value another thread
-//! computes) moves neither thread onto the other's core; once its share is done, the caller
-//! allows every thread every core of the process again.
+//! Kept threads are started once; and while [`scope`] does its own share of the work it allows the
+//! helpers it lent work to only the cores other than its own (their affinity,
+//! `sched_setaffinity(2)`, Linux only: elsewhere the kernel places them), so a helper starts
+//! within about 60 µs on an idle core and no wake-up moves it onto the caller's; once its share
+//! is done, the caller allows them every core of the process again. (Keeping the caller on its
+//! own core as well was measured: setting its own affinity sometimes held it for 1.4 ms, and
+//! the sheet gained nothing.)
 //!
 //! Each helper lends itself to one [`scope`] at a time and is back in the pool before that call
 //! returns. A call takes only the helpers idle at that moment, and runs its own share of the work
@@ -134,6 +135,9 @@ fn start() -> Option<Arc<Helper>> {
     let _ = helper
         .thread
         .set(std::os::unix::thread::JoinHandleExt::as_pthread_t(&_handle));
+    // Started off this thread's core too, so that it gets to wait for work without waiting for
+    // this thread's time slice first.
+    placement::away_from_here(&helper);
     Some(helper)
 }
 
@@ -184,16 +188,14 @@ pub fn scope<R>(helpers: usize, work: &(dyn Fn() + Sync), own: impl FnOnce() -> 
     // itself out of `latch`, and this function neither returns nor unwinds past `Finish` before
     // the count is zero, so no helper uses `work` after the borrow ends.
     let work: Work = unsafe { std::mem::transmute::<&(dyn Fn() + Sync), Work>(work) };
-    /// What is left to do once this thread has done its share: give its core back to the helpers
-    /// (and them every core), then wait for them. Done on return and on unwinding alike.
+    /// What is left to do once this thread has done its share: allow the helpers every core
+    /// again, then wait for them. Done on return and on unwinding alike.
     struct Finish<'a> {
         latch: &'a Latch,
         lent: &'a [Arc<Helper>],
-        kept: Option<placement::Cores>,
     }
     impl Finish<'_> {
         fn run(&mut self) -> Option<Box<dyn Any + Send>> {
-            placement::restore(self.kept.take());
             for h in self.lent {
                 placement::anywhere(h);
             }
@@ -209,7 +211,6 @@ pub fn scope<R>(helpers: usize, work: &(dyn Fn() + Sync), own: impl FnOnce() -> 
     let mut finish = Finish {
         latch: &latch,
         lent: &lent,
-        kept: placement::stay_here(),
     };
     for h in &lent {
         placement::away_from_here(h);
@@ -226,8 +227,8 @@ pub fn scope<R>(helpers: usize, work: &(dyn Fn() + Sync), own: impl FnOnce() -> 
     (r, lent.len())
 }
 
-/// Where the threads of a [`scope`] may run (Linux): the caller on its core, the helpers on the
-/// others, until the caller has done its share.
+/// Where the helpers of a [`scope`] may run (Linux): on the cores other than the caller's, until
+/// the caller has done its share.
 #[cfg(target_os = "linux")]
 mod placement {
     use super::Helper;
@@ -256,40 +257,6 @@ mod placement {
     /// Reads the process's cores, for every later call.
     pub(super) fn remember_cores() {
         allowed();
-    }
-
-    /// A thread's cores.
-    pub(super) type Cores = libc::cpu_set_t;
-
-    /// Keeps this thread on its core (so that no wake-up moves it onto a helper's), when the
-    /// process has another; what it was allowed before, for [`restore`].
-    pub(super) fn stay_here() -> Option<Cores> {
-        allowed()?;
-        // SAFETY: plain system calls on zeroed or copied sets of the right size.
-        unsafe {
-            let here = libc::sched_getcpu();
-            if here < 0 {
-                return None;
-            }
-            let size = std::mem::size_of::<libc::cpu_set_t>();
-            let mut before: libc::cpu_set_t = std::mem::zeroed();
-            if libc::sched_getaffinity(0, size, &mut before) != 0 {
-                return None;
-            }
-            let mut only: libc::cpu_set_t = std::mem::zeroed();
-            libc::CPU_SET(here as usize, &mut only);
-            (libc::sched_setaffinity(0, size, &only) == 0).then_some(before)
-        }
-    }
-
-    /// Allows this thread what [`stay_here`] found it allowed.
-    pub(super) fn restore(before: Option<Cores>) {
-        if let Some(before) = before {
-            // SAFETY: a plain system call with a valid set.
-            unsafe {
-                libc::sched_setaffinity(0, std::mem::size_of::<libc::cpu_set_t>(), &before);
-            }
-        }
     }
 
     /// Allows `h` every core of the process but this thread's, when that leaves one.
@@ -327,12 +294,7 @@ mod placement {
 #[cfg(not(target_os = "linux"))]
 mod placement {
     use super::Helper;
-    pub(super) type Cores = ();
     pub(super) fn remember_cores() {}
-    pub(super) fn stay_here() -> Option<()> {
-        None
-    }
-    pub(super) fn restore(_: Option<()>) {}
     pub(super) fn away_from_here(_: &Helper) {}
     pub(super) fn anywhere(_: &Helper) {}
 }
