@@ -77,10 +77,10 @@ struct Interner {
 static INTERNER: LazyLock<RwLock<Interner>> = LazyLock::new(|| RwLock::new(Interner::default()));
 
 fn serial_of(atom: Atom) -> u32 {
-    if let Some(&s) = INTERNER.read().expect("interner lock").index.get(&atom) {
+    if let Some(&s) = crate::parallel::lock::read(&INTERNER).index.get(&atom) {
         return s;
     }
-    let mut w = INTERNER.write().expect("interner lock");
+    let mut w = crate::parallel::lock::write(&INTERNER);
     if let Some(&s) = w.index.get(&atom) {
         return s;
     }
@@ -245,7 +245,7 @@ pub fn distinct<'a>(lists: impl IntoIterator<Item = &'a [(AtomId, i32)]>) -> (Ve
     }
     SEEN.with_borrow_mut(|seen| {
         // Every id handed out so far has a place: the serials below the interner's count, any class.
-        let len = INTERNER.read().expect("interner lock").atoms.len() << (32 - SHIFT);
+        let len = crate::parallel::lock::read(&INTERNER).atoms.len() << (32 - SHIFT);
         if seen.len() < len {
             seen.resize(len, false);
         }
@@ -272,7 +272,7 @@ pub fn distinct<'a>(lists: impl IntoIterator<Item = &'a [(AtomId, i32)]>) -> (Ve
 
 /// What an id stands for (for `Sin`/`Cos` ids: the angle's symbol).
 pub fn lookup(id: AtomId) -> Atom {
-    INTERNER.read().expect("interner lock").atoms[(id & SERIAL) as usize].clone()
+    crate::parallel::lock::read(&INTERNER).atoms[(id & SERIAL) as usize].clone()
 }
 
 /// The atom as a canonical expression.

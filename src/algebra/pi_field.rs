@@ -37,13 +37,11 @@ static TABLES: LazyLock<RwLock<Tables>> = LazyLock::new(|| RwLock::new(Tables::d
 
 /// `Ψ_L`, monic, as its coefficients from the constant term (`N + 1` of them).
 pub fn min_poly(l: u64) -> Arc<Vec<Rational>> {
-    if let Some(p) = TABLES.read().expect("pi tables").min.get(&l) {
+    if let Some(p) = crate::parallel::lock::read(&TABLES).min.get(&l) {
         return Arc::clone(p);
     }
     let p = Arc::new(compute_min_poly(l));
-    TABLES
-        .write()
-        .expect("pi tables")
+    crate::parallel::lock::write(&TABLES)
         .min
         .insert(l, Arc::clone(&p));
     p
@@ -99,7 +97,7 @@ pub fn mul(l: u64, a: &[Rational], b: &[Rational]) -> Vec<Rational> {
 
 /// `c^e` modulo `Ψ_L`, for any integer `e` (`c` is not zero, so `c^(−1)` exists).
 pub fn power(l: u64, e: i64) -> Arc<Vec<Rational>> {
-    if let Some(p) = TABLES.read().expect("pi tables").powers.get(&(l, e)) {
+    if let Some(p) = crate::parallel::lock::read(&TABLES).powers.get(&(l, e)) {
         return Arc::clone(p);
     }
     let n = degree(l);
@@ -126,9 +124,7 @@ pub fn power(l: u64, e: i64) -> Arc<Vec<Rational>> {
         }
     }
     let p = Arc::new(acc);
-    TABLES
-        .write()
-        .expect("pi tables")
+    crate::parallel::lock::write(&TABLES)
         .powers
         .insert((l, e), Arc::clone(&p));
     p

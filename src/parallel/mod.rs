@@ -13,8 +13,16 @@
 //! is printed or generated (see [`crate::algebra::atom`]): tidying and printing, which order
 //! structurally. The derivation's stages that run here intern no atom at all (sums, products by
 //! `q̇` and `q̈`, derivatives of `sin` and `cos`, whose partner atom is computed, not interned), so
-//! the polynomials they build, term order included, do not depend on the threads.
+//! the polynomials they build, term order included, do not depend on the threads. The compact
+//! derivations ([`crate::dynamics::compact`], [`crate::dynamics::ne_compact`]) intern a new atom
+//! for each name, and may run beside each other (a sheet derives its Newton–Euler programs on a
+//! helper): they create names in the order of their recursions and of their definitions, and find
+//! a value's name by its polynomial, so no name depends on the ids either.
+//!
+//! The process-wide tables that threads write in turn (the atom interner, the display memos) are
+//! locked by yielding too ([`lock`]).
 
+pub mod lock;
 pub mod pool;
 mod shared;
 

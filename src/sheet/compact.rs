@@ -10,13 +10,14 @@
 //! Values are printed through placeholder symbols (`zzq17`, printed `z_{zq17}`) that are replaced by
 //! the book's names in the finished LaTeX, so the printers and the layout stay as they are.
 
-use crate::algebra::atom::AtomId;
+use crate::algebra::atom::{self, AtomId};
 use crate::algebra::compact::Compact;
-use crate::algebra::fast_hash::FxHashMap;
+use crate::algebra::poly::Mono;
 use crate::algebra::tidy::{tidy_poly_by, Grouping};
-use crate::algebra::{Expr, Poly, Rational, Symbol};
+use crate::algebra::{Expr, Poly, Symbol};
 use crate::print::layout::{width, Layout, LINE_WIDTH};
 use crate::print::{self, Style};
+use std::cell::OnceCell;
 use std::collections::HashSet;
 
 /// The most terms a value is tidied (angle sums contracted, grouped) before it is printed; longer
@@ -185,69 +186,64 @@ pub fn book_name(s: &Symbol) -> String {
 
 /// The intermediates of one arena shown in a section: which are introduced already, and how values
 /// over them print.
+///
+/// A section shows a few hundred of an arena's names at most (the Stanford arm's arena holds some
+/// thousands), so each name's placeholder and book name are made when first met.
 pub struct Names<'a> {
     arena: &'a Compact,
     shown: HashSet<AtomId>,
-    /// Placeholder token (`z_{zq17}`) → the book's name, for every name of the arena.
-    tokens: Vec<(String, String)>,
-    /// Name atom → its placeholder symbol.
-    placeholder: FxHashMap<AtomId, Poly>,
+    /// Name `k`'s book name, once asked for.
+    book: Vec<OnceCell<String>>,
+    /// Name `k`'s placeholder symbol (`zzq{k}`), as an atom, once met.
+    placeholder: Vec<OnceCell<AtomId>>,
 }
 
 impl<'a> Names<'a> {
     /// The names of `arena`, none shown yet.
     pub fn new(arena: &'a Compact) -> Names<'a> {
-        let mut tokens = Vec::with_capacity(arena.len());
-        let mut placeholder = FxHashMap::default();
-        for (k, d) in arena.defs().iter().enumerate() {
-            let ph = Symbol::new(&format!("zzq{k}"));
-            tokens.push((
-                print::to_string(&Expr::sym(ph.clone()), Style::Latex),
-                book_name(&d.symbol),
-            ));
-            placeholder.insert(d.atom, Poly::symbol(&ph));
-        }
         Names {
             arena,
             shown: HashSet::new(),
-            tokens,
-            placeholder,
+            book: (0..arena.len()).map(|_| OnceCell::new()).collect(),
+            placeholder: (0..arena.len()).map(|_| OnceCell::new()).collect(),
         }
     }
 
-    /// `p` with every name replaced by its placeholder.
+    /// Name `k`'s LaTeX as the book writes it ([`book_name`]).
+    fn book(&self, k: usize) -> &str {
+        self.book[k].get_or_init(|| book_name(&self.arena.defs()[k].symbol))
+    }
+
+    /// The placeholder atom of the name whose atom is `id`; `None` for an atom that is no name.
+    fn placeholder(&self, id: AtomId) -> Option<AtomId> {
+        let k = self.arena.index_of(id)?;
+        Some(*self.placeholder[k].get_or_init(|| atom::sym(&Symbol::new(&format!("zzq{k}")))))
+    }
+
+    /// `p` with every name replaced by its placeholder (a name to a negative power stays as it
+    /// is): each monomial's factors renamed, then sorted again.
     fn with_placeholders(&self, p: &Poly) -> Expr {
-        let mut parts = Vec::with_capacity(p.len());
-        for (m, c) in p.terms() {
-            let mut t = Poly::constant(c.clone());
-            for &(id, e) in m.factors() {
-                let f = match self.placeholder.get(&id) {
-                    Some(ph) => ph.clone(),
-                    None => Poly::atom(id),
-                };
-                let f = if e == 1 {
-                    f
-                } else if e > 0 {
-                    f.pow(e as u32)
-                } else {
-                    Poly::term(crate::algebra::poly::Mono::atom(id, e), Rational::one())
-                };
-                t = t.mul(&f);
-            }
-            parts.push(t);
-        }
-        let poly = Poly::sum(parts.iter());
+        let terms = p.terms().iter().map(|(m, c)| {
+            let mut factors: Vec<(AtomId, i32)> = m
+                .factors()
+                .iter()
+                .map(|&(id, e)| match self.placeholder(id) {
+                    Some(ph) if e > 0 => (ph, e),
+                    _ => (id, e),
+                })
+                .collect();
+            factors.sort_unstable_by_key(|&(id, _)| id);
+            (Mono::from_sorted(factors), c.clone())
+        });
+        let poly = Poly::from_terms(terms);
         // Tidying pays where angle sums can be contracted: two terms with sines or cosines.
         let trig_terms = poly
             .terms()
             .iter()
             .filter(|(m, _)| {
-                m.factors().iter().any(|&(id, _)| {
-                    matches!(
-                        crate::algebra::atom::class(id),
-                        crate::algebra::atom::Class::Sin | crate::algebra::atom::Class::Cos
-                    )
-                })
+                m.factors()
+                    .iter()
+                    .any(|&(id, _)| matches!(atom::class(id), atom::Class::Sin | atom::Class::Cos))
             })
             .count();
         if trig_terms >= 2 && poly.len() <= TIDY_TERMS {
@@ -270,9 +266,9 @@ impl<'a> Names<'a> {
                 after[..digits].parse::<usize>(),
                 after[digits..].starts_with('}'),
             ) {
-                (Ok(k), true) if k < self.tokens.len() => {
+                (Ok(k), true) if k < self.book.len() => {
                     out.push('{');
-                    out.push_str(&self.tokens[k].1);
+                    out.push_str(self.book(k));
                     out.push('}');
                     rest = &after[digits + 1..];
                 }
@@ -321,7 +317,7 @@ impl<'a> Names<'a> {
             if !self.shown.insert(d.atom) {
                 continue;
             }
-            let name = &self.tokens[k].1;
+            let name = self.book(k);
             let e = self.with_placeholders(&d.value);
             let value = print::to_string(&e, Style::Latex);
             // Room for the name, ` &= ` and the placeholders' longer book names.
@@ -340,7 +336,7 @@ impl<'a> Names<'a> {
     pub fn is_name(&self, p: &Poly) -> Option<&str> {
         match p.terms() {
             [(m, c)] if c.is_one() => match m.factors() {
-                [(id, 1)] => self.arena.index_of(*id).map(|k| self.tokens[k].1.as_str()),
+                [(id, 1)] => self.arena.index_of(*id).map(|k| self.book(k)),
                 _ => None,
             },
             _ => None,

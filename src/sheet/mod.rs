@@ -23,6 +23,7 @@ mod scene;
 
 use crate::algebra::{Expr, Symbol};
 use crate::dynamics::check::{check_with, CheckOptions, ClaimProof};
+use crate::dynamics::ne_compact::CompactProgram;
 use crate::dynamics::{Derivation, Frame};
 use crate::print::{self, Style};
 use layout::Layout;
@@ -135,7 +136,11 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     // vectors out in order, tidying the next ones itself whenever the one it is due to print is
     // not ready (the SCARA arm's sheet, interleaved, 60 runs: 8.45 → 7.52 ms, with the thread that
     // tidied in print order and the proof thread started for the sheet instead; the Stanford arm's
-    // 18.7 → 16.3 ms). Neither when the display layer is held to one thread
+    // 18.7 → 16.3 ms). On a robot of more joints than `EXPANDED_FIRST`, whose sheet is nearly
+    // always compact, a helper first derives the compact Newton–Euler programs the sections show,
+    // which need the robot alone, while this thread derives the compact dynamics that both threads
+    // wait for otherwise (the Stanford arm's sheet, interleaved, 20 runs: 18.6 → 15.9 ms with the
+    // sheet's other changes of that commit). Neither when the display layer is held to one thread
     // (`parallel::set_threads`) or the robot has fewer than three revolute joints: the PPP, RPP
     // and elbow arms prove and tidy in less time than sharing the work costs.
     let full = opts.scope == Scope::Full;
@@ -148,11 +153,17 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             t
         });
         let expanded_ne = tidied.is_some() && frames.contains(&Frame::Body);
+        let programs: Vec<(Frame, CompactProgram)> = frames
+            .iter()
+            .filter(|_| compact)
+            .map(|&f| (f, newton_euler_compact::program(der, f)))
+            .collect();
         return document(
             der,
             opts,
             || compact,
             || tidied.as_ref(),
+            |frame| program_of(&programs, frame),
             || full.then(|| agreement(der, expanded_ne)),
         );
     }
@@ -167,6 +178,21 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     let frames = &frames;
     let listed =
         || vectors.get_or_init(|| (!is_compact()).then(|| newton_euler::Tidied::new(der, frames)));
+    // The compact Newton–Euler programs, derived from the robot alone: a helper derives them
+    // first, while this thread derives the compact dynamics that decide whether the sheet is
+    // compact (on a robot of more joints than `EXPANDED_FIRST`, which nearly always is).
+    let programs: Vec<(Frame, crate::parallel::Shared<CompactProgram>)> = frames
+        .iter()
+        .map(|&f| (f, crate::parallel::Shared::new()))
+        .collect();
+    let programs = &programs;
+    let program = |frame: Frame| {
+        let (_, cell) = programs
+            .iter()
+            .find(|(f, _)| *f == frame)
+            .expect("a program for each frame of the sheet");
+        cell.get_or_init(|| newton_euler_compact::program(der, frame))
+    };
     // The proofs, by the first helper that comes to them, or by this thread at the end if none did.
     let claimed = std::sync::atomic::AtomicBool::new(false);
     let proved: crate::parallel::Shared<Option<String>> = crate::parallel::Shared::new();
@@ -188,6 +214,11 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         let _ = proved.set(Some(text));
     };
     let helper = || {
+        if der.robot().dof() > EXPANDED_FIRST && compact.get().is_none_or(|&c| c) {
+            for &frame in frames.iter() {
+                program(frame);
+            }
+        }
         if full && !claimed.swap(true, std::sync::atomic::Ordering::Relaxed) {
             prove();
         }
@@ -213,19 +244,30 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         }
     };
     crate::parallel::pool::scope(crate::parallel::threads() - 1, &helper, || {
-        document(der, opts, is_compact, tidied, proofs)
+        document(der, opts, is_compact, tidied, program, proofs)
     })
     .0
 }
 
+/// The program of `frame` among `programs`.
+fn program_of(programs: &[(Frame, CompactProgram)], frame: Frame) -> &CompactProgram {
+    &programs
+        .iter()
+        .find(|(f, _)| *f == frame)
+        .expect("a program for each frame of the sheet")
+        .1
+}
+
 /// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` (waited for
-/// vector by vector, as they are laid out) and the agreement section from `proofs` (called once,
-/// when it is due).
+/// vector by vector, as they are laid out), the compact Newton–Euler programs from `programs`
+/// (asked for only when the sheet is compact), and the agreement section from `proofs` (called
+/// once, when it is due).
 fn document<'t>(
     der: &Derivation,
     opts: &SheetOptions,
     compact: impl Fn() -> bool,
     tidied: impl Fn() -> Option<&'t newton_euler::Tidied<'t>>,
+    programs: impl Fn(Frame) -> &'t CompactProgram,
     proofs: impl FnOnce() -> Option<String>,
 ) -> String {
     let mut lay = Layout::new();
@@ -251,7 +293,7 @@ fn document<'t>(
     }
     for frame in opts.frames() {
         out.push_str(&if compact {
-            newton_euler_compact::section(der, frame, &mut lay)
+            newton_euler_compact::section(der, frame, programs(frame), &mut lay)
         } else {
             newton_euler::section(der, frame, &mut lay, tidied(), &mut sides)
         });

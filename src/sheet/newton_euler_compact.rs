@@ -11,14 +11,25 @@ use crate::dynamics::ne_compact::CompactProgram;
 use crate::dynamics::{Derivation, Frame};
 use crate::print::layout::Layout;
 
-/// The section for `frame`.
-pub(super) fn section(der: &Derivation, frame: Frame, lay: &mut Layout) -> String {
+/// The recursion in `frame` over named quantities: derived from the robot alone, apart from the
+/// derivation's compact dynamics, whose names it does not share.
+pub(super) fn program(der: &Derivation, frame: Frame) -> CompactProgram {
     let robot = der.robot();
-    let program = match frame {
+    match frame {
         Frame::Body => CompactProgram::derive(robot),
         Frame::Inertial => CompactProgram::derive_inertial(robot),
     }
-    .expect("a derivation's robot is valid");
+    .expect("a derivation's robot is valid")
+}
+
+/// The section for `frame`, showing `program` ([`program`]).
+pub(super) fn section(
+    der: &Derivation,
+    frame: Frame,
+    program: &CompactProgram,
+    lay: &mut Layout,
+) -> String {
+    let robot = der.robot();
     let mut arena = crate::algebra::compact::Compact::new();
     for line in &program.intermediates {
         arena.define(line.symbol.clone(), line.value.clone());

@@ -40,15 +40,9 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
 
     fn lock(&self) -> MutexGuard<'_, FxHashMap<K, V>> {
         // A thread that panicked while holding the lock left the map whole (inserts are single
-        // calls): its contents stay good.
-        // Yielding rather than sleeping while another thread holds it (see `parallel::shared`).
-        loop {
-            match self.0.try_lock() {
-                Ok(guard) => return guard,
-                Err(std::sync::TryLockError::Poisoned(p)) => return p.into_inner(),
-                Err(std::sync::TryLockError::WouldBlock) => std::thread::yield_now(),
-            }
-        }
+        // calls): its contents stay good. Taken by yielding rather than sleeping
+        // (`parallel::lock`).
+        crate::parallel::lock::lock(&self.0)
     }
 }
 
