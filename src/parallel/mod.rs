@@ -108,7 +108,7 @@ pub fn map<T: Sync, R: Send>(
         }
         all.lock().unwrap_or_else(|p| p.into_inner()).extend(mine);
     };
-    pool::scope(threads - 1, &take, take);
+    pool::scope_open(threads - 1, &take, take);
     let mut done = done.into_inner().unwrap_or_else(|p| p.into_inner());
     done.sort_by_key(|&(i, _)| i);
     done.into_iter().map(|(_, r)| r).collect()

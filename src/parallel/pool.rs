@@ -13,12 +13,18 @@
 //! own core as well was measured: setting its own affinity sometimes held it for 1.4 ms, and
 //! the sheet gained nothing.)
 //!
+//! Work that any number of threads may run at once, each taking items until none is left
+//! ([`super::map`]'s), is also *open* while its caller runs ([`scope_open`]): a thread that only
+//! waits ([`help`], the sheet's thread waiting for the proofs a helper runs) joins it, however late
+//! it comes, instead of idling beside it.
+//!
 //! Each helper lends itself to one [`scope`] at a time and is back in the pool before that call
 //! returns. A call takes only the helpers idle at that moment, and runs its own share of the work
 //! meanwhile, so a call made by a helper (work nested in work) never waits for a helper that is
 //! not coming.
 
 use std::any::Any;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, OnceLock};
 
 /// Work lent to helpers: a borrowed closure whose lifetime [`scope`] erases, and keeps alive by not
@@ -62,6 +68,77 @@ fn pool() -> &'static Pool {
 /// these locks is a single assignment or push).
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
+}
+
+/// Open work ([`scope_open`]): the work, how many threads that joined it ([`help`]) still run it,
+/// and the first panic among them.
+struct Open {
+    work: Work,
+    running: AtomicUsize,
+    panic: Mutex<Option<Box<dyn Any + Send>>>,
+}
+
+/// The open work of every thread, the latest last.
+fn open() -> &'static Mutex<Vec<Arc<Open>>> {
+    static OPEN: Mutex<Vec<Arc<Open>>> = Mutex::new(Vec::new());
+    &OPEN
+}
+
+/// Runs some open work on this thread, if there is any, until it is done ([`scope_open`]); whether
+/// there was. For a thread that would otherwise wait, holding nothing another thread may wait for
+/// (what open work runs is pure, [`super`]).
+pub fn help() -> bool {
+    let job = {
+        let open = lock(open());
+        let Some(job) = open.last() else {
+            return false;
+        };
+        // Counted while still listed, so its caller waits for this thread before returning.
+        job.running.fetch_add(1, Ordering::AcqRel);
+        Arc::clone(job)
+    };
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(job.work));
+    if let Err(p) = outcome {
+        lock(&job.panic).get_or_insert(p);
+    }
+    job.running.fetch_sub(1, Ordering::AcqRel);
+    true
+}
+
+/// [`scope`] of work that any number of threads may run at once, each call taking items until none
+/// is left: open, besides, to every thread that calls [`help`] until this thread's share is done.
+pub fn scope_open<R>(
+    helpers: usize,
+    work: &(dyn Fn() + Sync),
+    own: impl FnOnce() -> R,
+) -> (R, usize) {
+    // SAFETY: as in `scope`: `work` is listed only until `Close` runs, which unlists it under the
+    // lock a joining thread counts itself under, then waits until every thread that joined is done
+    // with it; this function neither returns nor unwinds past `Close` before that.
+    let erased: Work = unsafe { std::mem::transmute::<&(dyn Fn() + Sync), Work>(work) };
+    let job = Arc::new(Open {
+        work: erased,
+        running: AtomicUsize::new(0),
+        panic: Mutex::new(None),
+    });
+    lock(open()).push(Arc::clone(&job));
+    /// Unlists the work and waits for the threads that joined it, on return and on unwinding.
+    struct Close<'a>(&'a Arc<Open>);
+    impl Drop for Close<'_> {
+        fn drop(&mut self) {
+            lock(open()).retain(|j| !Arc::ptr_eq(j, self.0));
+            while self.0.running.load(Ordering::Acquire) > 0 {
+                std::thread::yield_now();
+            }
+        }
+    }
+    let close = Close(&job);
+    let out = scope(helpers, work, own);
+    drop(close);
+    if let Some(p) = lock(&job.panic).take() {
+        std::panic::resume_unwind(p);
+    }
+    out
 }
 
 /// How many helpers of a [`scope`] have not finished, and the first panic among them.
@@ -343,6 +420,46 @@ mod tests {
         }
         let (_, again) = scope(1, &|| (), || ());
         assert!(again <= 1);
+    }
+
+    /// Open work is joined by a thread that calls `help`, however late it comes: each item runs
+    /// once, some on the joining thread, and the call returns only once that thread is done.
+    #[test]
+    fn a_waiting_thread_joins_open_work() {
+        const ITEMS: usize = 64;
+        let next = AtomicUsize::new(0);
+        let done: Vec<AtomicUsize> = (0..ITEMS).map(|_| AtomicUsize::new(0)).collect();
+        let joined = std::sync::atomic::AtomicBool::new(false);
+        let publisher = std::thread::current().id();
+        let work = || loop {
+            let k = next.fetch_add(1, Ordering::SeqCst);
+            if k >= ITEMS {
+                break;
+            }
+            if std::thread::current().id() == publisher {
+                // Holds the items back until the other thread has joined (ten seconds at most).
+                let start = std::time::Instant::now();
+                while !joined.load(Ordering::SeqCst) && start.elapsed().as_secs() < 10 {
+                    std::thread::yield_now();
+                }
+            } else {
+                joined.store(true, Ordering::SeqCst);
+            }
+            done[k].fetch_add(1, Ordering::SeqCst);
+        };
+        std::thread::scope(|s| {
+            // Other tests' open work may come first: it runs too.
+            s.spawn(|| {
+                while next.load(Ordering::SeqCst) < ITEMS && !joined.load(Ordering::SeqCst) {
+                    if !help() {
+                        std::thread::yield_now();
+                    }
+                }
+            });
+            scope_open(0, &work, work);
+        });
+        assert!(joined.load(Ordering::SeqCst), "the waiting thread joined");
+        assert!(done.iter().all(|d| d.load(Ordering::SeqCst) == 1));
     }
 
     /// Work lent from lent work takes only helpers idle at that moment, so it never waits for

@@ -72,6 +72,19 @@ impl<T> Shared<T> {
     pub fn wait(&self) -> &T {
         wait_for(&self.cell)
     }
+
+    /// The value, once another thread has set it, this thread running open work meanwhile
+    /// ([`super::pool::help`]): for a thread that holds nothing another may wait for.
+    pub fn wait_helping(&self) -> &T {
+        loop {
+            if let Some(v) = self.cell.get() {
+                return v;
+            }
+            if !super::pool::help() {
+                std::thread::yield_now();
+            }
+        }
+    }
 }
 
 /// The value of `cell`, waiting (yielding, see the module's doc) until another thread sets it.
