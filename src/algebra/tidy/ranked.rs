@@ -19,10 +19,11 @@ use super::contract::{
 };
 use super::rule::fixpoint;
 use crate::algebra::expr::{Expr, Func, Kind};
-use crate::algebra::fast_hash::FxHashMap;
+use crate::algebra::fast_hash::{FxHashMap, FxHasher};
 use crate::algebra::number::Rational;
 use crate::algebra::poly::{cmp_ranked, Ranked};
 use std::collections::hash_map::Entry;
+use std::hash::{Hash, Hasher};
 
 /// [`super::contract::contract_normal`] of the canonical sum of `ranked`, its passes of the angle-sum
 /// identities made on ranked terms ([`RankedSum::contract`]); with the result's ranked terms when
@@ -71,6 +72,41 @@ fn trig(base: &Expr) -> Option<(Func, &Expr)> {
 
 /// The candidates of one `(R, A, B)`: the other factors `R` by rank, the angles `A < B` by rank.
 type Key = (Vec<(u32, i32)>, u32, u32);
+
+/// The other factors `R` of a candidate pair: its term's factors less one power of those at
+/// places `i` and `j`.
+#[derive(Clone, Copy)]
+struct RestOf {
+    term: usize,
+    i: usize,
+    j: usize,
+}
+
+impl RestOf {
+    /// `R`'s factors by rank, in order.
+    fn factors<'t>(
+        self,
+        terms: &'t [(&'t [(u32, i32)], &'t Rational)],
+    ) -> impl Iterator<Item = (u32, i32)> + 't {
+        terms[self.term]
+            .0
+            .iter()
+            .enumerate()
+            .filter_map(move |(n, &(r, k))| {
+                let k = if n == self.i || n == self.j { k - 1 } else { k };
+                (k != 0).then_some((r, k))
+            })
+    }
+}
+
+/// The candidates of one `(R, A, B)` met so far in a pass.
+struct Pending<'t> {
+    rest: RestOf,
+    a: u32,
+    b: u32,
+    first: Candidate<'t>,
+    more: Vec<Candidate<'t>>,
+}
 
 /// The terms of the sum `e` over its distinct bases ranked in the canonical order; `None` when `e`
 /// is not a sum (or, past any real expression, holds an exponent beyond `i32`).
@@ -187,9 +223,16 @@ fn pair_terms<'t>(
             })
         })
         .collect();
-    // About two pairs of trig factors a term (sized once, not grown pass by pass).
-    let mut buckets: FxHashMap<Key, Vec<Candidate>> =
-        FxHashMap::with_capacity_and_hasher(2 * terms.len(), Default::default());
+    // The candidates of each distinct `(R, A, B)`, each `R` read from its first candidate's term
+    // (built as a list only for the keys of two candidates or more, the few a pass merges), found
+    // by a hash of `R` and the angles: about two pairs of trig factors a term.
+    let mut groups: Vec<Pending> = Vec::with_capacity(2 * terms.len());
+    let mut by_hash: FxHashMap<u64, u32> = FxHashMap::with_capacity_and_hasher(
+        2 * terms.len(),
+        Default::default(),
+    );
+    // Groups whose hash another group has: searched after the first, in creation order.
+    let mut collided: Vec<(u64, u32)> = Vec::new();
     for (index, &(factors, coeff)) in terms.iter().enumerate() {
         let trig: Vec<(usize, Func, u32)> = factors
             .iter()
@@ -209,26 +252,63 @@ fn pair_terms<'t>(
                 } else {
                     ((b, g), (a, f))
                 };
-                let rest: Vec<(u32, i32)> = factors
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(n, &(r, k))| {
-                        let k = if n == i || n == j { k - 1 } else { k };
-                        (k != 0).then_some((r, k))
-                    })
-                    .collect();
-                buckets.entry((rest, a, b)).or_default().push(Candidate {
+                let rest = RestOf { term: index, i, j };
+                let hash = {
+                    let mut h = FxHasher::default();
+                    (a, b).hash(&mut h);
+                    for x in rest.factors(terms) {
+                        x.hash(&mut h);
+                    }
+                    h.finish()
+                };
+                let candidate = Candidate {
                     index,
                     funcs: (f, g),
                     coeff,
-                });
+                };
+                let same = |g: &Pending| {
+                    g.a == a && g.b == b && g.rest.factors(terms).eq(rest.factors(terms))
+                };
+                let found = match by_hash.get(&hash) {
+                    Some(&k) if same(&groups[k as usize]) => Some(k),
+                    Some(_) => collided
+                        .iter()
+                        .find(|&&(h, k)| h == hash && same(&groups[k as usize]))
+                        .map(|&(_, k)| k),
+                    None => None,
+                };
+                match found {
+                    Some(k) => groups[k as usize].more.push(candidate),
+                    None => {
+                        let k = groups.len() as u32;
+                        match by_hash.entry(hash) {
+                            Entry::Vacant(v) => {
+                                v.insert(k);
+                            }
+                            Entry::Occupied(_) => collided.push((hash, k)),
+                        }
+                        groups.push(Pending {
+                            rest,
+                            a,
+                            b,
+                            first: candidate,
+                            more: Vec::new(),
+                        });
+                    }
+                }
             }
         }
     }
     // Visited in the canonical order of (R, A, B), never in hash order (the keys are distinct).
-    let mut groups: Vec<(Key, Vec<Candidate>)> = buckets
+    let mut groups: Vec<(Key, Vec<Candidate>)> = groups
         .into_iter()
-        .filter(|(_, cands)| cands.len() >= 2)
+        .filter(|g| !g.more.is_empty())
+        .map(|g| {
+            let mut cands = Vec::with_capacity(1 + g.more.len());
+            cands.push(g.first);
+            cands.extend(g.more);
+            ((g.rest.factors(terms).collect(), g.a, g.b), cands)
+        })
         .collect();
     groups.sort_unstable_by(|(x, _), (y, _)| {
         cmp_ranked(&x.0, &y.0)
