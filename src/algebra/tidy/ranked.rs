@@ -227,10 +227,8 @@ fn pair_terms<'t>(
     // (built as a list only for the keys of two candidates or more, the few a pass merges), found
     // by a hash of `R` and the angles: about two pairs of trig factors a term.
     let mut groups: Vec<Pending> = Vec::with_capacity(2 * terms.len());
-    let mut by_hash: FxHashMap<u64, u32> = FxHashMap::with_capacity_and_hasher(
-        2 * terms.len(),
-        Default::default(),
-    );
+    let mut by_hash: FxHashMap<u64, u32> =
+        FxHashMap::with_capacity_and_hasher(2 * terms.len(), Default::default());
     // Groups whose hash another group has: searched after the first, in creation order.
     let mut collided: Vec<(u64, u32)> = Vec::new();
     for (index, &(factors, coeff)) in terms.iter().enumerate() {
