@@ -78,7 +78,8 @@ struct Open {
     panic: Mutex<Option<Box<dyn Any + Send>>>,
 }
 
-/// The open work of every thread, the latest last.
+/// The open work of every thread, the latest last (locked by yielding, [`super::lock`]: a
+/// thread waiting here would otherwise be woken on the core of the thread that held it).
 fn open() -> &'static Mutex<Vec<Arc<Open>>> {
     static OPEN: Mutex<Vec<Arc<Open>>> = Mutex::new(Vec::new());
     &OPEN
@@ -89,7 +90,7 @@ fn open() -> &'static Mutex<Vec<Arc<Open>>> {
 /// (what open work runs is pure, [`super`]).
 pub fn help() -> bool {
     let job = {
-        let open = lock(open());
+        let open = super::lock::lock(open());
         let Some(job) = open.last() else {
             return false;
         };
@@ -121,12 +122,12 @@ pub fn scope_open<R>(
         running: AtomicUsize::new(0),
         panic: Mutex::new(None),
     });
-    lock(open()).push(Arc::clone(&job));
+    super::lock::lock(open()).push(Arc::clone(&job));
     /// Unlists the work and waits for the threads that joined it, on return and on unwinding.
     struct Close<'a>(&'a Arc<Open>);
     impl Drop for Close<'_> {
         fn drop(&mut self) {
-            lock(open()).retain(|j| !Arc::ptr_eq(j, self.0));
+            super::lock::lock(open()).retain(|j| !Arc::ptr_eq(j, self.0));
             while self.0.running.load(Ordering::Acquire) > 0 {
                 std::thread::yield_now();
             }

@@ -80,9 +80,10 @@ impl<T> Shared<T> {
             if let Some(v) = self.cell.get() {
                 return v;
             }
-            if !super::pool::help() {
-                std::thread::yield_now();
-            }
+            // Open work whose items are all taken is still listed until its caller is done:
+            // joining it runs nothing, so this thread yields either way.
+            super::pool::help();
+            std::thread::yield_now();
         }
     }
 }
