@@ -274,7 +274,9 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
             "print; output discarded), so that printing can never hide behind a fast derivation. ",
         );
         s.push_str("A robot's commands run in turn, a round at a time, so that each ratio compares processes ");
-        s.push_str("run side by side (on a machine whose speed drifts, medians taken minutes apart would not). ");
+        s.push_str("run side by side (on a machine whose speed drifts, medians taken minutes apart would not), ");
+        s.push_str("eleven rounds at least in a full run, and more while they have taken less than a second per command ");
+        s.push_str("(up to 101: a small robot's processes vary by a tenth from one to the next). ");
         s.push_str("`derive ÷ EL` is the whole `derive` process (Euler–Lagrange, printed in full) in text, LaTeX and JSON ");
         s.push_str("over the expanded Euler–Lagrange derivation alone (D, c_ijk, C, g, τ and K), in process (table above; ");
         s.push_str("`derive` derives what it prints: the equations need D, c_ijk, g and τ; the JSON document ");

@@ -347,12 +347,15 @@ impl Runner {
         runs: usize,
         budget: f64,
     ) -> Record {
-        let mut recs = self.end_to_end_rounds(robot, &[(method, args.to_vec())], runs, budget);
+        let mut recs = self.end_to_end_rounds(robot, &[(method, args.to_vec())], runs, budget, 0.0);
         recs.pop().expect("one record per command")
     }
 
     /// [`Runner::end_to_end`] of several commands `(method, ARGS)` taken in turn, a round at a time:
-    /// `runs` rounds, or fewer once they have taken `budget` seconds per command (three at least).
+    /// `runs` rounds, or fewer once they have taken `budget` seconds per command (three at least),
+    /// or more (up to [`MAX_ROUNDS`]) while they have taken less than `fill` seconds per command:
+    /// a command of a few milliseconds varies by a tenth from one process to the next here, and
+    /// a handful of rounds left its median, and so its ratio to `check`, that far off.
     /// Each median then spans the same stretch of time as the others, so their ratios (`derive ÷
     /// check`, `sheet ÷ check`) hold on a machine whose speed drifts while it is measured. A
     /// command that fails is not run again; its record says why.
@@ -362,6 +365,7 @@ impl Runner {
         commands: &[(&str, Vec<&str>)],
         runs: usize,
         budget: f64,
+        fill: f64,
     ) -> Vec<Record> {
         for (_, args) in commands {
             eprintln!("bench: end to end, symdyn {}", args.join(" "));
@@ -372,8 +376,12 @@ impl Runner {
             .collect();
         let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(runs); commands.len()];
         let started = Instant::now();
-        for round in 0..runs {
-            if round >= 3 && started.elapsed().as_secs_f64() > budget * commands.len() as f64 {
+        for round in 0.. {
+            let per_command = started.elapsed().as_secs_f64() / commands.len() as f64;
+            if round >= 3 && per_command > budget {
+                break;
+            }
+            if round >= runs && (per_command >= fill || round >= MAX_ROUNDS) {
                 break;
             }
             for (((_, args), rec), times) in commands.iter().zip(&mut recs).zip(&mut times) {
@@ -482,6 +490,13 @@ fn sheet_pages(exe: &Path, name: &str, path: &str, dof: usize, scratch: &Path) -
     }
     rec
 }
+
+/// The most rounds of end-to-end processes of the examples ([`Runner::end_to_end_rounds`]).
+const MAX_ROUNDS: usize = 101;
+
+/// The seconds per command that the end-to-end rounds of an example fill, up to [`MAX_ROUNDS`]
+/// (the SCARA arm's commands take a few milliseconds: about 101 rounds; the Panda's, 40).
+const FILL_SECONDS: f64 = 1.0;
 
 /// The peers' engines: (record method, `--engine`, `--trigsimp`).
 const PEER_RUNS: [(&str, &str, bool); 3] = [
@@ -980,10 +995,13 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
             ],
             spawns,
             f64::INFINITY,
+            0.0,
         ));
     }
     // Every command and format, whole processes, on every example: printing can never hide.
     let (runs, budget) = if args.quick { (3, 2.0) } else { (11, 10.0) };
+    // Small robots' rounds go on for a second per command.
+    let fill = if args.quick { 0.0 } else { FILL_SECONDS };
     for spec in &examples {
         let RobotSpec::Example(name) = spec else {
             continue;
@@ -1013,7 +1031,7 @@ pub fn bench(args: BenchArgs) -> Result<String, CliError> {
         } else {
             (runs, budget)
         };
-        records.extend(runner.end_to_end_rounds((name, dof), &commands, rounds, time));
+        records.extend(runner.end_to_end_rounds((name, dof), &commands, rounds, time, fill));
         records.push(runner.end_to_end(
             (name, dof),
             "e2e-regressor-base",
