@@ -65,7 +65,9 @@ fn pool() -> &'static Pool {
 }
 
 /// Locks `m`, whose contents stay whole if a thread panicked while holding it (every change under
-/// these locks is a single assignment or push).
+/// these locks is a single assignment or push). It blocks rather than yields
+/// ([`super::lock`]): a helper's state and its latch are waited on with condition variables, and
+/// an idle helper is meant to sleep.
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|p| p.into_inner())
 }

@@ -166,7 +166,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             opts,
             || compact,
             || tidied.as_ref(),
-            |frame| program_of(&programs, frame),
+            |frame| of_frame(&programs, frame),
             || full.then(|| agreement(der, expanded_ne)),
         );
     }
@@ -190,11 +190,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         .collect();
     let programs = &programs;
     let program = |frame: Frame| {
-        let (_, cell) = programs
-            .iter()
-            .find(|(f, _)| *f == frame)
-            .expect("a program for each frame of the sheet");
-        cell.get_or_init(|| newton_euler_compact::program(der, frame))
+        of_frame(programs, frame).get_or_init(|| newton_euler_compact::program(der, frame))
     };
     // The proofs, by the first helper that comes to them, or by this thread at the end if none did.
     let claimed = std::sync::atomic::AtomicBool::new(false);
@@ -257,8 +253,9 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
     .0
 }
 
-/// The program of `frame` among `programs`.
-fn program_of(programs: &[(Frame, CompactProgram)], frame: Frame) -> &CompactProgram {
+/// The program of `frame` among `programs` (each frame of the sheet has one: derived, or a cell a
+/// thread derives it into).
+fn of_frame<T>(programs: &[(Frame, T)], frame: Frame) -> &T {
     &programs
         .iter()
         .find(|(f, _)| *f == frame)
