@@ -3,7 +3,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use symdyn::algebra::calculus::poly_diff;
-use symdyn::algebra::tidy::{tidy_poly_by, Grouping};
+use symdyn::algebra::tidy::{forget_memos, tidy_poly_by, Grouping};
 use symdyn::algebra::{diff, expand, normal_form, to_poly, Expr, Symbol};
 
 /// `Π_{i=1..n} (cos q_i + sin q_i + l_i)`: a dense trig polynomial of 3^n terms.
@@ -54,6 +54,19 @@ fn bench(c: &mut Criterion) {
         "tidy the SCARA arm's Newton–Euler components (both frames)",
         |b| {
             b.iter(|| {
+                for p in &components {
+                    black_box(tidy_poly_by(black_box(p), Grouping::Leading));
+                }
+            })
+        },
+    );
+    // The same from scratch, as a sheet's process meets them: every rule's memo forgotten first,
+    // so the grouping by leading parameter and by rates is timed too.
+    c.bench_function(
+        "tidy the SCARA arm's Newton–Euler components from scratch (memos forgotten)",
+        |b| {
+            b.iter(|| {
+                forget_memos();
                 for p in &components {
                     black_box(tidy_poly_by(black_box(p), Grouping::Leading));
                 }

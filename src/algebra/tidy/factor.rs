@@ -55,7 +55,7 @@ pub fn factor_list(e: &Expr) -> Vec<Expr> {
 
 /// The sums [`factor_list`] has factored, with their factors: the grouping of a sheet's vectors
 /// factors the same coefficient sums over and over (the SCARA arm's, 139 distinct in 469 calls).
-static FACTORED: Memo<Expr, Vec<Expr>> = Memo::new();
+pub(super) static FACTORED: Memo<Expr, Vec<Expr>> = Memo::new();
 
 /// Whether `a` is a symbol or a sum of rational multiples of symbols (`q1`, `2 q1`, `q2 + q3`,
 /// `q1 − 1`), which [`factor_common`] leaves as it is: nothing but content can come out of it, and

@@ -47,7 +47,7 @@ pub(super) fn group_ranked(e: &Expr, ranks: Option<&RankedSum>, grouping: Groupi
 
 /// The sums [`group`] has grouped, with their results: a sheet groups some sums more than once (an
 /// equation's side in the Euler–Lagrange section and in both Newton–Euler sections).
-static DISPLAYED: Memo<(Expr, Grouping), Expr> = Memo::new();
+pub(super) static DISPLAYED: Memo<(Expr, Grouping), Expr> = Memo::new();
 
 /// [`group`], computed: by leading parameter on the sum's ranked terms when its bases are plain
 /// ([`super::leading`], the same result, checked against the expressions' in debug builds), else on

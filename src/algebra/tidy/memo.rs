@@ -38,6 +38,11 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
         v
     }
 
+    /// Forgets every entry ([`super::forget_memos`]).
+    pub fn clear(&self) {
+        self.lock().clear();
+    }
+
     fn lock(&self) -> MutexGuard<'_, FxHashMap<K, V>> {
         // A thread that panicked while holding the lock left the map whole (inserts are single
         // calls): its contents stay good. Taken by yielding rather than sleeping
@@ -76,5 +81,19 @@ mod tests {
         let before = calls.load(Ordering::Relaxed);
         assert_eq!(MEMO.get_or(&7, square), 49);
         assert_eq!(calls.load(Ordering::Relaxed), before + 1);
+    }
+
+    #[test]
+    fn a_cleared_memo_computes_again() {
+        static MEMO: Memo<usize, usize> = Memo::new();
+        let calls = AtomicUsize::new(0);
+        let double = |k: &usize| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            2 * k
+        };
+        assert_eq!(MEMO.get_or(&3, double), 6);
+        MEMO.clear();
+        assert_eq!(MEMO.get_or(&3, double), 6);
+        assert_eq!(calls.load(Ordering::Relaxed), 2);
     }
 }

@@ -108,6 +108,15 @@ pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
     group::group_ranked(&contracted, ranks.as_ref(), grouping)
 }
 
+/// Forgets what the memos of the display rules hold ([`memo`]): for a benchmark that times the
+/// rules from scratch, as a process meets them once, rather than their remembered results. What
+/// is displayed is the same either way (each memo holds a pure function's results).
+pub fn forget_memos() {
+    group::DISPLAYED.clear();
+    factor::FACTORED.clear();
+    rates::GROUPED.clear();
+}
+
 /// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial
 /// ([`tidy_poly_by`]).
 pub trait Tidy {

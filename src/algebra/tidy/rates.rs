@@ -176,7 +176,7 @@ pub fn group_rates(e: &Expr) -> Expr {
 
 /// The sums [`group_rates`] has grouped, with their results: the vectors of a Newton–Euler section
 /// repeat a few factors many times (the SCARA arm's sheet groups 60 distinct sums in 178 calls).
-static GROUPED: Memo<Expr, Expr> = Memo::new();
+pub(super) static GROUPED: Memo<Expr, Expr> = Memo::new();
 
 /// [`group_rates`] of a sum with rates, term by term.
 fn grouped(e: &Expr) -> Expr {
