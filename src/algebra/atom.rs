@@ -275,8 +275,25 @@ pub fn lookup(id: AtomId) -> Atom {
     crate::parallel::lock::read(&INTERNER).atoms[(id & SERIAL) as usize].clone()
 }
 
+/// The atoms' expressions made so far: a polynomial turned back into an expression, or ranked for
+/// display ([`super::poly::Poly::to_expr`], the tidying of a sheet's vectors), asks for the same few
+/// atoms' expressions thousands of times.
+static EXPRS: LazyLock<RwLock<FxHashMap<AtomId, Expr>>> = LazyLock::new(RwLock::default);
+
 /// The atom as a canonical expression.
 pub fn to_expr(id: AtomId) -> Expr {
+    if let Some(e) = crate::parallel::lock::read(&EXPRS).get(&id) {
+        return e.clone();
+    }
+    let e = make_expr(id);
+    crate::parallel::lock::write(&EXPRS)
+        .entry(id)
+        .or_insert(e)
+        .clone()
+}
+
+/// [`to_expr`], made.
+fn make_expr(id: AtomId) -> Expr {
     let atom = lookup(id);
     match (class(id), atom) {
         (Class::Sin, Atom::Sym(s)) => Expr::sin(&Expr::sym(s)),
