@@ -837,7 +837,7 @@ impl Poly {
     /// each term's factors sorted by rank, and the terms sorted once, on these numbers instead of
     /// on the expressions ([`cmp_ranked`]).
     pub(crate) fn ranked(&self) -> Option<Ranked<'_>> {
-        let (atoms, _) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
+        let (atoms, table) = atom::distinct(self.terms.iter().map(|(m, _)| m.factors()));
         let mut bases = Vec::with_capacity(atoms.len());
         for &id in &atoms {
             let e = atom::to_expr(id);
@@ -858,19 +858,33 @@ impl Poly {
         for (r, &i) in order.iter().enumerate() {
             rank[i] = r as u32;
         }
-        let index = |id: AtomId| atoms.binary_search(&id).expect("collected above");
+        // Each atom's rank by its dense index, in a table of this thread's kept from call to call
+        // (only this call's atoms are written, and only they are read).
+        thread_local! {
+            static RANK_OF: std::cell::RefCell<Vec<u32>> = const { std::cell::RefCell::new(Vec::new()) };
+        }
         let mut constant = Rational::zero();
         let mut keyed: Vec<(Vec<(u32, i32)>, &Rational)> = Vec::with_capacity(self.terms.len());
-        for (m, c) in &self.terms {
-            if m.0.is_empty() {
-                constant = c.clone();
-                continue;
+        RANK_OF.with_borrow_mut(|rank_of| {
+            if rank_of.len() < table {
+                rank_of.resize(table, 0);
             }
-            let mut key: Vec<(u32, i32)> =
-                m.0.iter().map(|&(id, e)| (rank[index(id)], e)).collect();
-            key.sort_unstable_by_key(|&(r, _)| r);
-            keyed.push((key, c));
-        }
+            for (&id, &r) in atoms.iter().zip(&rank) {
+                rank_of[atom::dense_index(id)] = r;
+            }
+            for (m, c) in &self.terms {
+                if m.0.is_empty() {
+                    constant = c.clone();
+                    continue;
+                }
+                let mut key: Vec<(u32, i32)> =
+                    m.0.iter()
+                        .map(|&(id, e)| (rank_of[atom::dense_index(id)], e))
+                        .collect();
+                key.sort_unstable_by_key(|&(r, _)| r);
+                keyed.push((key, c));
+            }
+        });
         keyed.sort_unstable_by(|(x, _), (y, _)| cmp_ranked(x, y));
         Some(Ranked {
             bases: order.iter().map(|&i| bases[i].clone()).collect(),
