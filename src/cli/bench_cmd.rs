@@ -495,7 +495,7 @@ fn sheet_pages(exe: &Path, name: &str, path: &str, dof: usize, scratch: &Path) -
 const MAX_ROUNDS: usize = 101;
 
 /// The seconds per command that the end-to-end rounds of an example fill, up to [`MAX_ROUNDS`]
-/// (the SCARA arm's commands take a few milliseconds: about 101 rounds; the Panda's, 40).
+/// (the SCARA arm's commands take a few milliseconds: 101 rounds; the Panda's about 50).
 const FILL_SECONDS: f64 = 1.0;
 
 /// The peers' engines: (record method, `--engine`, `--trigsimp`).
