@@ -336,21 +336,22 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
     if clash {
         return (latex.to_string(), false);
     }
-    // Each backslash, found by `str::find` of a character (core's word-at-a-time search), is
-    // tried as the start of `\sin` or `\cos`; the text between is copied whole. Not
-    // `memchr::memmem`: its first use asks the processor for its features (`cpuid`), which a
-    // virtual machine traps, about 0.2 ms of the SCARA arm's sheet.
+    // One pass over the bytes: at each `\sin` or `\cos` that reads as a joint angle's, the text
+    // since the last one is copied whole and the abbreviation written. Not `memchr::memmem`: its
+    // first use asks the processor for its features (`cpuid`), which a virtual machine traps,
+    // about 0.2 ms of the SCARA arm's sheet.
+    let bytes = latex.as_bytes();
     let mut out = String::with_capacity(latex.len());
     let mut copied = 0;
     let mut at = 0;
     let mut any = false;
-    while let Some(i) = latex[at..].find('\\') {
+    while let Some(i) = bytes[at..].iter().position(|&b| b == b'\\') {
         at += i;
-        match trig_at(&latex[at..]) {
-            Some((text, used)) => {
+        match Trig::at(&latex[at..]) {
+            Some(trig) => {
                 out.push_str(&latex[copied..at]);
-                out.push_str(&text);
-                at += used;
+                trig.write(&mut out);
+                at += trig.used;
                 copied = at;
                 any = true;
             }
@@ -361,60 +362,94 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
     (out, any)
 }
 
-/// `\sin^{2} q_{3}` or `\cos\left(q_{2}+q_{3}\right)` at the start of `s` as `s_{3}^{2}`, `c_{23}`,
-/// with the bytes it spans.
-fn trig_at(s: &str) -> Option<(String, usize)> {
-    let (letter, rest) = if let Some(r) = s.strip_prefix("\\sin") {
-        ('s', r)
-    } else if let Some(r) = s.strip_prefix("\\cos") {
-        ('c', r)
-    } else {
-        return None;
-    };
-    let (power, rest) = match rest.strip_prefix("^{") {
-        Some(r) => {
-            let end = r.find('}')?;
-            (format!("^{{{}}}", &r[..end]), &r[end + 1..])
-        }
-        None => (String::new(), rest),
-    };
-    let index = |t: &str| -> Option<(String, usize)> {
-        let r = t.strip_prefix("q_{")?;
-        let end = r.find('}')?;
-        let digits = &r[..end];
-        (!digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
-            .then(|| (digits.to_string(), 3 + end + 1))
-    };
-    let (idx, rest_used): (Vec<String>, usize) = if let Some(r) = rest.strip_prefix(' ') {
-        let (i, used) = index(r)?;
-        // A bare argument ends the factor: nothing may follow that continues it.
-        if r[used..].starts_with(['_', '^', '{']) {
+/// A sine or cosine of joint angles as the book abbreviates it: `\sin^{2} q_{3}` is `s_{3}^{2}`,
+/// `\cos\left(q_{2}+q_{3}\right)` is `c_{23}`.
+struct Trig<'a> {
+    /// `s` or `c`.
+    letter: char,
+    /// The power's text (`2` of `^{2}`), if any.
+    power: Option<&'a str>,
+    /// The joint indices, in order.
+    indices: Vec<&'a str>,
+    /// The bytes of the text it abbreviates.
+    used: usize,
+}
+
+impl<'a> Trig<'a> {
+    /// The abbreviation of the function at the start of `s`, if it is one of joint angles.
+    fn at(s: &'a str) -> Option<Trig<'a>> {
+        let (letter, rest) = if let Some(r) = s.strip_prefix("\\sin") {
+            ('s', r)
+        } else if let Some(r) = s.strip_prefix("\\cos") {
+            ('c', r)
+        } else {
             return None;
-        }
-        (vec![i], 1 + used)
-    } else if let Some(r) = rest.strip_prefix("\\left(") {
-        let end = r.find("\\right)")?;
-        let inner = &r[..end];
-        let mut idx = Vec::new();
-        for part in inner.split('+') {
-            let part = part.trim();
-            let (i, used) = index(part)?;
-            if used != part.len() {
+        };
+        let (power, rest) = match rest.strip_prefix("^{") {
+            Some(r) => {
+                let end = r.find('}')?;
+                (Some(&r[..end]), &r[end + 1..])
+            }
+            None => (None, rest),
+        };
+        let mut indices = Vec::new();
+        let after = if let Some(r) = rest.strip_prefix(' ') {
+            let r = joint_index(r, &mut indices)?;
+            // A bare argument ends the factor: nothing may follow that continues it.
+            if r.starts_with(['_', '^', '{']) {
                 return None;
             }
-            idx.push(i);
+            r
+        } else {
+            // `q_{i}` terms joined by `+` (spaces around them allowed), then `\right)`.
+            let mut r = rest.strip_prefix("\\left(")?;
+            loop {
+                r = joint_index(r.trim_start(), &mut indices)?.trim_start();
+                match r.strip_prefix('+') {
+                    Some(next) => r = next,
+                    None => break r.strip_prefix("\\right)")?,
+                }
+            }
+        };
+        Some(Trig {
+            letter,
+            power,
+            indices,
+            used: s.len() - after.len(),
+        })
+    }
+
+    /// Writes the abbreviation: `c_{23}`, `s_{3}^{2}`, `c_{2,10}` (indices of more than one digit
+    /// separated by commas).
+    fn write(&self, out: &mut String) {
+        out.push(self.letter);
+        out.push_str("_{");
+        let commas = self.indices.iter().any(|i| i.len() > 1);
+        for (k, i) in self.indices.iter().enumerate() {
+            if commas && k > 0 {
+                out.push(',');
+            }
+            out.push_str(i);
         }
-        (idx, 6 + end + 7)
-    } else {
+        out.push('}');
+        if let Some(p) = self.power {
+            out.push_str("^{");
+            out.push_str(p);
+            out.push('}');
+        }
+    }
+}
+
+/// `q_{i}` (digits) at the start of `s`: `i` pushed on `indices`, and the text after it.
+fn joint_index<'a>(s: &'a str, indices: &mut Vec<&'a str>) -> Option<&'a str> {
+    let r = s.strip_prefix("q_{")?;
+    let end = r.find('}')?;
+    let digits = &r[..end];
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
-    };
-    let used = s.len() - rest.len() + rest_used;
-    let sub = if idx.iter().all(|i| i.len() == 1) {
-        idx.concat()
-    } else {
-        idx.join(",")
-    };
-    Some((format!("{letter}_{{{sub}}}{power}"), used))
+    }
+    indices.push(digits);
+    Some(&r[end + 1..])
 }
 
 const PREAMBLE: &str = "\\documentclass[10pt]{article}
@@ -558,6 +593,15 @@ mod tests {
                 "\\frac{1}{2} \\cos^{2} q_{3} \\left(a\\right) \\sinh q_{1} \\sin q_{4}",
                 "\\frac{1}{2} c_{3}^{2} \\left(a\\right) \\sinh q_{1} s_{4}",
             ),
+            // Spaces around the sum's signs, a power of a sum, and what is not a joint angle's.
+            (
+                "\\cos^{2}\\left(q_{1} + q_{2}\\right) q_{3}",
+                "c_{12}^{2} q_{3}",
+            ),
+            ("\\sin\\left(q_{1}+\\right)", "\\sin\\left(q_{1}+\\right)"),
+            ("\\sin q_{} \\cos q_{x}", "\\sin q_{} \\cos q_{x}"),
+            ("\\sin q_{1}^{2} \\cos q_{2}", "\\sin q_{1}^{2} c_{2}"),
+            ("a \\cos q_{1}\\", "a c_{1}\\"),
         ] {
             let der = Derivation::new(
                 crate::parse::parse_scene(crate::parse::BUILTIN_PPP)

@@ -15,7 +15,7 @@
 
 use super::factor;
 use super::ranked::{rank_sum, RankedSum};
-use super::rates::group_rates;
+use super::rates::group_rates_ranked;
 use crate::algebra::expr::{Expr, Kind};
 use crate::algebra::fast_hash::FxHashMap;
 use crate::algebra::number::Rational;
@@ -182,12 +182,15 @@ fn factored(bases: &[Expr], terms: &[Term], constant: &Rational) -> Vec<Expr> {
     };
     let mut inner_constant = constant * &scale;
     let mut pairs: Vec<(Expr, Rational)> = Vec::with_capacity(divided.len());
+    // Each term's factors, for the grouping of rates on ranks.
+    let mut ranked: Vec<Vec<(u32, i32)>> = Vec::with_capacity(divided.len());
     for (fs, c) in divided {
         let c = &c * &scale;
         if fs.is_empty() {
             inner_constant += &c;
         } else {
             pairs.push((Ranked::monomial_over(bases, &fs), c));
+            ranked.push(fs);
         }
     }
     let inner = Expr::sum_of_sorted_monomials(inner_constant, pairs);
@@ -196,7 +199,7 @@ fn factored(bases: &[Expr], terms: &[Term], constant: &Rational) -> Vec<Expr> {
     if !monomial.is_empty() {
         out.push(Ranked::monomial_over(bases, &monomial));
     }
-    out.push(group_rates(&inner));
+    out.push(group_rates_ranked(&inner, bases, &ranked));
     out
 }
 
