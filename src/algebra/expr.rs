@@ -436,31 +436,44 @@ impl Expr {
     pub fn product<I: IntoIterator<Item = Expr>>(items: I) -> Expr {
         let mut coeff = Rational::one();
         // Every (base, exponent), then sorted by base and merged (as an ordered map would, cheaper).
-        let mut all: Vec<(Expr, i64)> = Vec::new();
+        // Multiplications by 1 are skipped, and only a sum can carry content out of a base.
+        let items = items.into_iter();
+        let mut all: Vec<(Expr, i64)> = Vec::with_capacity(items.size_hint().0.max(4));
+        let times = |coeff: &mut Rational, r: &Rational| {
+            if !r.is_one() {
+                *coeff = &*coeff * r;
+            }
+        };
         for item in items {
             match item.kind() {
-                Kind::Num(r) => coeff = &coeff * r,
+                Kind::Num(r) => times(&mut coeff, r),
                 Kind::Mul(c, fs) => {
-                    coeff = &coeff * c;
+                    times(&mut coeff, c);
                     for (b, k) in fs {
-                        let (b, content) = primitive_base(b);
-                        if !content.is_one() {
-                            coeff = &coeff * &content.pow(*k).expect("non-zero content");
+                        if let Kind::Add(..) = b.kind() {
+                            let (b, content) = primitive_base(b);
+                            if !content.is_one() {
+                                coeff = &coeff * &content.pow(*k).expect("non-zero content");
+                            }
+                            all.push((b, *k));
+                        } else {
+                            all.push((b.clone(), *k));
                         }
-                        all.push((b, *k));
                     }
                 }
-                _ => {
+                Kind::Add(..) => {
                     let (b, content) = primitive_base(&item);
-                    coeff = &coeff * &content;
+                    times(&mut coeff, &content);
                     all.push((b, 1));
                 }
+                _ => all.push((item, 1)),
             }
             if coeff.is_zero() {
                 return Expr::zero();
             }
         }
         all.sort_by(|a, b| a.0.cmp(&b.0));
+        // Merged in place: equal bases add their exponents.
         let mut bases: Vec<(Expr, i64)> = Vec::with_capacity(all.len());
         for (b, k) in all {
             match bases.last_mut() {
@@ -468,25 +481,28 @@ impl Expr {
                 _ => bases.push((b, k)),
             }
         }
-        // Square roots: sqrt(k)^e = k^floor(e/2) sqrt(k)^(e mod 2); the odd ones multiply into one radicand.
-        let mut radicand = BigInt::one();
-        let mut factors: Vec<(Expr, i64)> = Vec::with_capacity(bases.len());
-        for (b, e) in bases {
-            if e == 0 {
-                continue;
+        // Square roots: sqrt(k)^e = k^floor(e/2) sqrt(k)^(e mod 2); the odd ones multiply into one
+        // radicand. Zero exponents drop out.
+        let mut radicand: Option<BigInt> = None;
+        let mut factors = bases;
+        factors.retain(|(b, e)| {
+            if *e == 0 {
+                return false;
             }
             if let Kind::Sqrt(k) = b.kind() {
                 let half = e.div_euclid(2);
                 let odd = e.rem_euclid(2);
-                coeff = &coeff * &Rational::from(k.clone()).pow(half).expect("k >= 2");
-                if odd == 1 {
-                    radicand *= k;
+                if half != 0 {
+                    coeff = &coeff * &Rational::from(k.clone()).pow(half).expect("k >= 2");
                 }
-                continue;
+                if odd == 1 {
+                    *radicand.get_or_insert_with(BigInt::one) *= k;
+                }
+                return false;
             }
-            factors.push((b, e));
-        }
-        if !radicand.is_one() {
+            true
+        });
+        if let Some(radicand) = radicand.filter(|r| !r.is_one()) {
             let (s, rest) = split_square(&radicand);
             coeff = &coeff * &Rational::from(s);
             if !rest.is_one() {
