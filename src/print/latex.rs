@@ -21,8 +21,15 @@ pub(super) fn expr(e: &Expr) -> String {
 
 /// Signed pieces joined into a sum; `nested` sums are compact unless a piece contains a space.
 pub(super) fn sum(pieces: &[Piece], nested: bool) -> String {
-    let bodies: Vec<String> = pieces.iter().map(|p| product(&p.product)).collect();
-    super::join_sum(pieces, &bodies, nested)
+    let mut bodies = String::new();
+    let ends: Vec<usize> = pieces
+        .iter()
+        .map(|p| {
+            product_into(&p.product, &mut bodies);
+            bodies.len()
+        })
+        .collect();
+    super::join_written(pieces, &bodies, &ends, nested)
 }
 
 /// `\begin{bmatrix} r1 \\ r2 \end{bmatrix}` from rows already joined with `&`.
@@ -36,51 +43,95 @@ pub(super) fn bmatrix(rows: &[String]) -> String {
     )
 }
 
-/// The magnitude of a product: `2 m_{2}`, `\frac{1}{2} m_{1}`, `\frac{\sqrt{2}}{2}`, `\frac{m_{1}}{l_{c2}}`.
-fn product(p: &Product) -> String {
-    let mut top: Vec<String> = Vec::new();
-    if !p.numer_is_one() {
-        top.push(p.numer.to_string());
+/// Parts written with a separator between them, as they come, into one string: `[a, b].join(" ")`
+/// without a string for each part.
+struct Joined<'o> {
+    out: &'o mut String,
+    first: bool,
+}
+
+impl<'o> Joined<'o> {
+    /// Parts joined by spaces, written at the end of `out`.
+    fn new(out: &'o mut String) -> Joined<'o> {
+        Joined { out, first: true }
     }
-    top.extend(factors(&p.numeric));
+
+    /// Starts the next part (after a space unless it is the first) and returns where to write it.
+    fn next(&mut self) -> &mut String {
+        if !self.first {
+            self.out.push(' ');
+        }
+        self.first = false;
+        self.out
+    }
+
+    /// The next part.
+    fn push(&mut self, part: &str) {
+        self.next().push_str(part);
+    }
+}
+
+/// The magnitude of a product, written at the end of `out`: `2 m_{2}`, `\frac{1}{2} m_{1}`, `\frac{\sqrt{2}}{2}`, `\frac{m_{1}}{l_{c2}}`.
+fn product_into(p: &Product, out: &mut String) {
+    // The number's parts: the numerator (unless 1), the leading roots and powers of π.
+    let top = |j: &mut Joined| {
+        if !p.numer_is_one() {
+            j.push(&p.numer_text());
+        }
+        factors_into(&p.numeric, j);
+    };
+    let start = out.len();
     if p.down.is_empty() {
-        let mut parts: Vec<String> = Vec::new();
-        let number = top.join(" ");
         if !p.denom_is_one() {
-            let n = if number.is_empty() { "1" } else { &number };
-            parts.push(format!("\\frac{{{n}}}{{{}}}", p.denom));
-        } else if !number.is_empty() {
-            parts.push(number);
+            out.push_str("\\frac{");
+            let at = out.len();
+            top(&mut Joined::new(out));
+            if out.len() == at {
+                out.push('1');
+            }
+            out.push_str("}{");
+            out.push_str(&p.denom_text());
+            out.push('}');
+        } else {
+            top(&mut Joined::new(out));
         }
-        parts.extend(factors(&p.up));
-        if parts.is_empty() {
-            return "1".to_string();
+        // The other factors after the number, if there is one.
+        let mut parts = Joined::new(out);
+        parts.first = parts.out.len() == start;
+        factors_into(&p.up, &mut parts);
+        if out.len() == start {
+            out.push('1');
         }
-        return parts.join(" ");
+        return;
     }
-    let numerator = match lone_sum(&p.up) {
-        Some(s) if top.is_empty() => s,
-        _ => {
-            top.extend(factors(&p.up));
-            if top.is_empty() {
-                "1".to_string()
-            } else {
-                top.join(" ")
+    out.push_str("\\frac{");
+    let lone = (p.numer_is_one() && p.numeric.is_empty())
+        .then(|| lone_sum(&p.up))
+        .flatten();
+    match lone {
+        Some(s) => out.push_str(&s),
+        None => {
+            let at = out.len();
+            let mut j = Joined::new(out);
+            top(&mut j);
+            factors_into(&p.up, &mut j);
+            if out.len() == at {
+                out.push('1');
             }
         }
-    };
-    let denominator = match lone_sum(&p.down) {
-        Some(s) if p.denom_is_one() => s,
-        _ => {
-            let mut bottom: Vec<String> = Vec::new();
+    }
+    out.push_str("}{");
+    match lone_sum(&p.down).filter(|_| p.denom_is_one()) {
+        Some(s) => out.push_str(&s),
+        None => {
+            let mut j = Joined::new(out);
             if !p.denom_is_one() {
-                bottom.push(p.denom.to_string());
+                j.push(&p.denom_text());
             }
-            bottom.extend(factors(&p.down));
-            bottom.join(" ")
+            factors_into(&p.down, &mut j);
         }
-    };
-    format!("\\frac{{{numerator}}}{{{denominator}}}")
+    }
+    out.push('}');
 }
 
 /// A fraction's numerator or denominator that is one sum needs no parentheses: `\frac{1}{a + b}`.
@@ -91,17 +142,15 @@ fn lone_sum(list: &[(Expr, i64)]) -> Option<String> {
     }
 }
 
-/// A run of juxtaposed factors; a function learns whether a non-function factor follows it.
-fn factors(list: &[(Expr, i64)]) -> Vec<String> {
-    list.iter()
-        .enumerate()
-        .map(|(i, (b, e))| {
-            let guarded = list
-                .get(i + 1)
-                .is_some_and(|(next, _)| !matches!(next.kind(), Kind::Fun(..)));
-            factor(b, *e, guarded)
-        })
-        .collect()
+/// A run of juxtaposed factors, each a part of `j`; a function learns whether a non-function
+/// factor follows it.
+fn factors_into(list: &[(Expr, i64)], j: &mut Joined) {
+    for (i, (b, e)) in list.iter().enumerate() {
+        let guarded = list
+            .get(i + 1)
+            .is_some_and(|(next, _)| !matches!(next.kind(), Kind::Fun(..)));
+        factor_into(b, *e, guarded, j.next());
+    }
 }
 
 /// The most factors [`factor`] remembers per thread before it starts again.
@@ -117,26 +166,41 @@ thread_local! {
 /// `base^{exp}` for a positive exponent; functions as `\sin^{2} q_{2}`. `guarded`: a non-function
 /// factor follows, so a function's argument needs its parentheses.
 pub(super) fn factor(base: &Expr, exp: i64, guarded: bool) -> String {
+    let mut out = String::new();
+    factor_into(base, exp, guarded, &mut out);
+    out
+}
+
+/// [`factor`], written at the end of `out` (a remembered text copied from the memo, not cloned).
+fn factor_into(base: &Expr, exp: i64, guarded: bool, out: &mut String) {
     if let Kind::Fun(f, arg) = base.kind() {
         let key = (base.clone(), exp, guarded);
-        if let Some(s) = FUNCTIONS.with(|m| m.borrow().get(&key).cloned()) {
-            return s;
+        let found = FUNCTIONS.with(|m| match m.borrow().get(&key) {
+            Some(s) => {
+                out.push_str(s);
+                true
+            }
+            None => false,
+        });
+        if found {
+            return;
         }
         let s = function(*f, arg, exp, guarded);
+        out.push_str(&s);
         FUNCTIONS.with(|m| {
             let mut m = m.borrow_mut();
             if m.len() >= FACTOR_MEMO {
                 m.clear();
             }
-            m.insert(key, s.clone());
+            m.insert(key, s);
         });
-        return s;
+        return;
     }
-    let b = atom(base);
-    if exp == 1 {
-        b
-    } else {
-        format!("{b}^{{{exp}}}")
+    atom_into(base, out);
+    if exp != 1 {
+        out.push_str("^{");
+        out.push_str(itoa::Buffer::new().format(exp));
+        out.push('}');
     }
 }
 
@@ -172,23 +236,38 @@ thread_local! {
 
 /// A base that takes a superscript as it is: a symbol, `\pi`, `\sqrt{k}`, or a parenthesised sum.
 fn atom(e: &Expr) -> String {
+    let mut out = String::new();
+    atom_into(e, &mut out);
+    out
+}
+
+/// [`atom`], written at the end of `out` (a remembered text copied from the memo, not cloned).
+fn atom_into(e: &Expr, out: &mut String) {
     if !matches!(e.kind(), Kind::Sym(_) | Kind::Add(..)) {
-        return atom_text(e);
+        out.push_str(&atom_text(e));
+        return;
     }
-    if let Some(s) = ATOMS.with(|m| m.borrow().get(e).cloned()) {
-        return s;
+    let found = ATOMS.with(|m| match m.borrow().get(e) {
+        Some(s) => {
+            out.push_str(s);
+            true
+        }
+        None => false,
+    });
+    if found {
+        return;
     }
     let s = atom_text(e);
+    out.push_str(&s);
     if s.len() <= ATOM_MEMO_BYTES {
         ATOMS.with(|m| {
             let mut m = m.borrow_mut();
             if m.len() >= FACTOR_MEMO {
                 m.clear();
             }
-            m.insert(e.clone(), s.clone());
+            m.insert(e.clone(), s);
         });
     }
-    s
 }
 
 /// The longest text [`atom`] remembers: the memory of the memo stays within a few megabytes.

@@ -40,8 +40,6 @@ pub mod poly;
 mod text;
 
 use crate::algebra::{Expr, Kind, Rational};
-use num_bigint::BigInt;
-use num_traits::Signed;
 
 /// An output style.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -125,6 +123,30 @@ fn join_sum(pieces: &[Piece], bodies: &[String], nested: bool) -> String {
     join_signs(&signs, bodies, nested)
 }
 
+/// [`join_sum`] of bodies written one after another into `bodies`, each ending at its offset in
+/// `ends`: no string for each body.
+fn join_written(pieces: &[Piece], bodies: &str, ends: &[usize], nested: bool) -> String {
+    if pieces.is_empty() {
+        return "0".to_string();
+    }
+    // A body holds a space exactly when their concatenation does there.
+    let spaced = !nested || bodies.contains(' ');
+    let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
+    let mut out = String::with_capacity(bodies.len() + 3 * pieces.len());
+    let mut start = 0;
+    for (i, (p, &end)) in pieces.iter().zip(ends).enumerate() {
+        match (i, p.negative) {
+            (0, false) => {}
+            (0, true) => out.push('-'),
+            (_, false) => out.push_str(plus),
+            (_, true) => out.push_str(minus),
+        }
+        out.push_str(&bodies[start..end]);
+        start = end;
+    }
+    out
+}
+
 /// [`join_sum`] from the signs alone.
 fn join_signs(negative: &[bool], bodies: &[String], nested: bool) -> String {
     if negative.is_empty() {
@@ -190,10 +212,9 @@ impl Piece {
 /// A product laid out for printing: `(numer · numeric · up) / (denom · down)`.
 #[derive(Clone, Debug)]
 struct Product {
-    /// The coefficient's numerator, positive.
-    numer: BigInt,
-    /// The coefficient's denominator, positive.
-    denom: BigInt,
+    /// The coefficient, positive: its numerator and denominator print (kept as the rational, so
+    /// that a small one needs no big integers).
+    coeff: Rational,
     /// The leading square roots and positive powers of π, which print as part of the number
     /// (`sqrt(2)/2`, `π/2`).
     numeric: Vec<(Expr, i64)>,
@@ -207,8 +228,7 @@ impl Product {
     /// Lays out `|coeff| · Π factors`.
     fn new(coeff: &Rational, factors: &[(Expr, i64)]) -> Product {
         let mut p = Product {
-            numer: coeff.numer().abs(),
-            denom: coeff.denom(),
+            coeff: coeff.abs(),
             numeric: vec![],
             up: vec![],
             down: vec![],
@@ -228,12 +248,34 @@ impl Product {
 
     /// Whether the coefficient's numerator is 1 (and so is omitted before other factors).
     fn numer_is_one(&self) -> bool {
-        self.numer == BigInt::from(1)
+        match self.coeff.as_small() {
+            Some((n, _)) => n == 1,
+            None => num_traits::One::is_one(&self.coeff.numer()),
+        }
     }
 
     /// Whether the coefficient's denominator is 1.
     fn denom_is_one(&self) -> bool {
-        self.denom == BigInt::from(1)
+        match self.coeff.as_small() {
+            Some((_, d)) => d == 1,
+            None => num_traits::One::is_one(&self.coeff.denom()),
+        }
+    }
+
+    /// The coefficient's numerator, in decimal.
+    fn numer_text(&self) -> String {
+        match self.coeff.as_small() {
+            Some((n, _)) => itoa::Buffer::new().format(n).to_string(),
+            None => self.coeff.numer().to_string(),
+        }
+    }
+
+    /// The coefficient's denominator, in decimal.
+    fn denom_text(&self) -> String {
+        match self.coeff.as_small() {
+            Some((_, d)) => itoa::Buffer::new().format(d).to_string(),
+            None => self.coeff.denom().to_string(),
+        }
     }
 }
 

@@ -49,7 +49,7 @@ impl Printer {
         let sep = self.sep();
         let mut top: Vec<String> = Vec::new();
         if !p.numer_is_one() {
-            top.push(p.numer.to_string());
+            top.push(p.numer_text());
         }
         top.extend(p.numeric.iter().map(|(b, e)| self.factor(b, *e)));
         if p.down.is_empty() {
@@ -57,7 +57,7 @@ impl Printer {
             let number = top.join(sep);
             if !p.denom_is_one() {
                 let n = if number.is_empty() { "1" } else { &number };
-                parts.push(format!("{n}/{}", p.denom));
+                parts.push(format!("{n}/{}", p.denom_text()));
             } else if !number.is_empty() {
                 parts.push(number);
             }
@@ -75,7 +75,7 @@ impl Printer {
         };
         let mut bottom: Vec<String> = Vec::new();
         if !p.denom_is_one() {
-            bottom.push(p.denom.to_string());
+            bottom.push(p.denom_text());
         }
         bottom.extend(p.down.iter().map(|(b, e)| self.factor(b, *e)));
         let denominator = if bottom.len() > 1 {
