@@ -200,6 +200,19 @@ pub(super) fn angle_sum_ranked(ranked: &Ranked, e: &Expr) -> Option<Expr> {
     rebuild_from(constant.clone(), kept, merged)
 }
 
+/// The hash of a factor `(rank, exponent)` of a term's `R` ([`pair_terms`]), 0 for a power 0 (a
+/// factor that is not there); `R`'s hash is the sum of its factors'.
+fn factor_hash(r: u32, k: i32) -> u64 {
+    if k == 0 {
+        return 0;
+    }
+    let mut h = FxHasher::default();
+    (r, k).hash(&mut h);
+    // One more round of mixing: sums of the plain multiply-rotate values collide too easily.
+    let x = h.finish();
+    (x ^ (x >> 29)).wrapping_mul(0xbf58_476d_1ce4_e5b9)
+}
+
 /// The pairs that one pass of the angle-sum identities merges among `terms` (ranked factor lists
 /// over `bases` in the canonical order of their monomials, with their coefficients). For each
 /// pair, in the canonical order of `(R, A, B)`, `merge(group, R, h, c)`: the index of its group
@@ -231,15 +244,27 @@ fn pair_terms<'t>(
         FxHashMap::with_capacity_and_hasher(2 * terms.len(), Default::default());
     // Groups whose hash another group has: searched after the first, in creation order.
     let mut collided: Vec<(u64, u32)> = Vec::new();
+    // Each term's sines and cosines of angles (their places, functions and angles), in one list
+    // cleared for each term.
+    let mut trig: Vec<(usize, Func, u32)> = Vec::with_capacity(8);
     for (index, &(factors, coeff)) in terms.iter().enumerate() {
-        let trig: Vec<(usize, Func, u32)> = factors
-            .iter()
-            .enumerate()
-            .filter_map(|(i, &(r, k))| match funcs[r as usize] {
+        trig.clear();
+        trig.extend(factors.iter().enumerate().filter_map(|(i, &(r, k))| {
+            match funcs[r as usize] {
                 Some((f, a)) if k > 0 => Some((i, f, a)),
                 _ => None,
-            })
-            .collect();
+            }
+        }));
+        if trig.len() < 2 {
+            continue;
+        }
+        // `R`'s hash, for every pair at once: the sum of its factors' own hashes, so a pair's
+        // is the term's with its two factors' hashes changed for one power less (a factor gone
+        // at power 0). Groups are told apart by their keys, never by the hash (a shared hash only
+        // costs a comparison), so a weaker hash changes no result.
+        let whole = factors
+            .iter()
+            .fold(0u64, |h, &(r, k)| h.wrapping_add(factor_hash(r, k)));
         for (x, &(i, f, a)) in trig.iter().enumerate() {
             for &(j, g, b) in &trig[x + 1..] {
                 if a == b {
@@ -252,12 +277,14 @@ fn pair_terms<'t>(
                 };
                 let rest = RestOf { term: index, i, j };
                 let hash = {
+                    let one_less =
+                        |(r, k): (u32, i32)| factor_hash(r, k - 1).wrapping_sub(factor_hash(r, k));
                     let mut h = FxHasher::default();
                     (a, b).hash(&mut h);
-                    for x in rest.factors(terms) {
-                        x.hash(&mut h);
-                    }
                     h.finish()
+                        .wrapping_add(whole)
+                        .wrapping_add(one_less(factors[i]))
+                        .wrapping_add(one_less(factors[j]))
                 };
                 let candidate = Candidate {
                     index,
