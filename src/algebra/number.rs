@@ -281,6 +281,13 @@ impl Rational {
         if self.is_negative() {
             return None;
         }
+        if let Repr::Small(n, d) = self.0 {
+            // In 64 bits: the roots of coprime squares are coprime, so the result is reduced.
+            return Some(Rational::from_reduced_i128(
+                i128::from(sqrt_u64(n as u64)?),
+                i128::from(sqrt_u64(d as u64)?),
+            ));
+        }
         let root = |n: BigInt| {
             let s = num_integer::Roots::sqrt(&n);
             (&s * &s == n).then_some(s)
@@ -416,6 +423,20 @@ impl PartialOrd for Rational {
 
 /// Greatest common divisor of two `u64`s.
 #[inline]
+/// The square root of `n` when `n` is a perfect square.
+fn sqrt_u64(n: u64) -> Option<u64> {
+    // The float's root is within one of the integer root (a 53-bit mantissa); corrected by
+    // exact integer steps.
+    let mut s = (n as f64).sqrt() as u64;
+    while s.checked_mul(s).is_none_or(|sq| sq > n) {
+        s -= 1;
+    }
+    while (s + 1).checked_mul(s + 1).is_some_and(|sq| sq <= n) {
+        s += 1;
+    }
+    (s * s == n).then_some(s)
+}
+
 fn gcd_u64(a: u64, b: u64) -> u64 {
     if a == 1 || b == 1 {
         // Integers and unit numerators are most coefficients; the loop would take a step a bit.
@@ -702,6 +723,28 @@ mod tests {
             Rational::from_bigints(BigInt::from(3).pow(80u32), BigInt::from(7).pow(40u32)).unwrap();
         let root = Rational::from_bigints(BigInt::from(3).pow(40u32), BigInt::from(7).pow(20u32));
         assert_eq!(big.sqrt_exact(), root);
+        // The 64-bit path against the big integers' roots, about squares and at the ends.
+        for n in (0..2000u64).chain([u64::from(u32::MAX) * u64::from(u32::MAX), i64::MAX as u64]) {
+            let general = num_integer::Roots::sqrt(&BigInt::from(n));
+            let want = (&general * &general == BigInt::from(n))
+                .then(|| u64::try_from(general).expect("a root of a u64"));
+            assert_eq!(sqrt_u64(n), want, "{n}");
+        }
+        for (n, d) in [
+            (4, 9),
+            (49, 64),
+            (3, 4),
+            (i64::MAX, 1),
+            (1, 3037000499 * 3037000499),
+        ] {
+            let x = r(n, d);
+            let general = Rational::from_bigints(
+                num_integer::Roots::sqrt(&x.numer()),
+                num_integer::Roots::sqrt(&x.denom()),
+            )
+            .filter(|y| y * y == x);
+            assert_eq!(x.sqrt_exact(), general, "{n}/{d}");
+        }
     }
 
     #[test]

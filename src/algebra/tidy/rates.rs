@@ -150,10 +150,16 @@ fn square(terms: &[(RateMonomial, Rational)]) -> Option<(Rational, Expr)> {
         }
     }
     // Integer l_i: scale by the lcm of their denominators (k by its square).
-    let den = l.values().fold(num_bigint::BigInt::from(1), |m, r| {
-        num_integer::Integer::lcm(&m, &r.denom())
+    let small = l.values().try_fold(1i64, |m, r| {
+        let (_, d) = r.as_small()?;
+        m.checked_mul(d / num_integer::Integer::gcd(&m, &d))
     });
-    let den = Rational::from(den);
+    let den = match small {
+        Some(d) => Rational::int(d),
+        None => Rational::from(l.values().fold(num_bigint::BigInt::from(1), |m, r| {
+            num_integer::Integer::lcm(&m, &r.denom())
+        })),
+    };
     let form = Expr::sum(
         l.iter()
             .map(|(&i, li)| rate_expr((1, i)).scale(&(li * &den))),
@@ -452,35 +458,38 @@ fn has_rate(e: &Expr) -> bool {
 /// factored: `(q̇1 + q̇2)² a2 d4 s4 − (q̇1 + q̇2)² a2 lc4 s4` is
 /// `(q̇1 + q̇2)² a2 (d4 − lc4) s4`. Whether any did.
 fn collect_parameters(terms: Vec<Expr>) -> (Vec<Expr>, bool) {
+    type Factors = Vec<(Expr, i64)>;
     let power = |(b, k): (Expr, i64)| b.pow(k).expect("bases of a canonical product are non-zero");
     let mut kept = Vec::with_capacity(terms.len());
-    // The rest (with a rate) -> each term's coefficient times its parameters, and the term.
-    let mut groups: FxHashMap<Expr, Vec<(Expr, Expr)>> = FxHashMap::default();
+    // The rest (with a rate), by its factors -> each term's coefficient times its parameters, and
+    // the term. Keyed by the factor list, which is the rest's expression's as it stands (a
+    // canonical product's factors are sorted, merged, and its sums primitive): the expression is
+    // built only for a group of two terms or more.
+    let mut groups: FxHashMap<Factors, Vec<(Expr, Expr)>> = FxHashMap::default();
     for t in terms {
         let (c, m) = t.split_coeff();
-        type Factors = Vec<(Expr, i64)>;
         let (params, others): (Factors, Factors) =
             m.factors().into_iter().partition(|(b, _)| is_length(b));
         if !others.iter().any(|(b, _)| has_rate(b)) {
             kept.push(t);
             continue;
         }
-        let rest = if others.iter().all(|(b, _)| b.is_plain_base()) {
-            Expr::monomial_of_sorted_bases(others)
-        } else {
-            Expr::product(others.into_iter().map(power))
-        };
         // Parameters and coordinates are symbols: their product is one as it stands.
         let part = Expr::monomial_of_sorted_bases(params).scale(&c);
-        groups.entry(rest).or_default().push((part, t));
+        groups.entry(others).or_default().push((part, t));
     }
     let mut collected = false;
-    for (rest, mut parts) in groups {
+    for (others, mut parts) in groups {
         if parts.len() == 1 {
             kept.push(parts.pop().expect("one part").1);
             continue;
         }
         collected = true;
+        let rest = if others.iter().all(|(b, _)| b.is_plain_base()) {
+            Expr::monomial_of_sorted_bases(others)
+        } else {
+            Expr::product(others.into_iter().map(power))
+        };
         let sum = Expr::sum(parts.into_iter().map(|(part, _)| part));
         kept.push(Expr::product(factor_list(&sum).into_iter().chain([rest])));
     }
