@@ -34,31 +34,37 @@ pub fn is_length(b: &Expr) -> bool {
     }
 }
 
-/// The term `c t` as `(P, R)`: its coefficient and length factors, and the rest.
-fn split(t: &Expr, c: &Rational) -> (Expr, Expr) {
-    let (mut p, mut r) = (vec![Expr::num(c.clone())], Vec::new());
-    for (b, k) in t.factors() {
-        let power = b.pow(k).expect("bases of a canonical product are non-zero");
-        if is_length(&b) {
-            p.push(power);
-        } else {
-            r.push(power);
-        }
-    }
-    (Expr::product(p), Expr::product(r))
+/// A term's factors `(base, exponent)`, in canonical order.
+type Factors = Vec<(Expr, i64)>;
+
+/// The term `t` as `(P, R)`, each as its factors: its length factors (`P` with the term's
+/// coefficient), and the rest. A canonical product's factors are sorted, merged and its sums
+/// primitive, so `R`'s expression ([`product`]) is the same exactly when its factors are: the
+/// expressions are built only for the terms that share a rest.
+fn split(t: &Expr) -> (Factors, Factors) {
+    t.factors().into_iter().partition(|(b, _)| is_length(b))
+}
+
+/// The product of `c` (if any) and of the factors.
+fn product(c: Option<&Rational>, factors: Factors) -> Expr {
+    Expr::product(
+        c.map(|c| Expr::num(c.clone())).into_iter().chain(
+            factors
+                .into_iter()
+                .map(|(b, k)| b.pow(k).expect("bases of a canonical product are non-zero")),
+        ),
+    )
 }
 
 /// The fewest symbols a shared rest has: a shorter one (`g + q̈1`, `(q̇1 + q̇2)²`) reads as the book
 /// writes it, once per mass (the PPP arm's `−m2 (g + q̈1) − m3 (g + q̈1)`, as in its worked solution).
 pub const SHARED_SYMBOLS: usize = 3;
 
-/// Whether the rest `r` holds a sum (to a power or not) and at least [`SHARED_SYMBOLS`] symbols: a
-/// factor a reader would otherwise read twice.
-fn worth_sharing(r: &Expr) -> bool {
-    r.factors()
-        .iter()
-        .any(|(b, _)| matches!(b.kind(), Kind::Add(..)))
-        && symbols(r) >= SHARED_SYMBOLS
+/// Whether the rest `r` (its factors) holds a sum (to a power or not) and at least
+/// [`SHARED_SYMBOLS`] symbols: a factor a reader would otherwise read twice.
+fn worth_sharing(r: &[(Expr, i64)]) -> bool {
+    r.iter().any(|(b, _)| matches!(b.kind(), Kind::Add(..)))
+        && r.iter().map(|(b, _)| symbols(b)).sum::<usize>() >= SHARED_SYMBOLS
 }
 
 /// Whether the product `t` has a sum among its factors.
@@ -80,8 +86,8 @@ fn symbols(e: &Expr) -> usize {
     }
 }
 
-/// A term of a group: its `P`, and the term as (monomial, coefficient).
-type Member = (Expr, (Expr, Rational));
+/// A term of a group: its `P`'s factors, and the term as (monomial, coefficient).
+type Member = (Factors, (Expr, Rational));
 
 /// `e` with the terms that share a rest holding a sum written once: `(Σ P) R`. `e` itself when no two
 /// terms do.
@@ -103,13 +109,13 @@ pub fn share_cofactors(e: &Expr) -> Expr {
     // coefficient); the others by their rest R, in the order they come.
     let mut constant = Rational::zero();
     let mut kept: Vec<(Expr, Rational)> = Vec::with_capacity(ts.len());
-    let mut groups: Vec<(Expr, Vec<Member>)> = Vec::new();
+    let mut groups: Vec<(Factors, Vec<Member>)> = Vec::new();
     for (t, c) in e.terms() {
         if t.is_one() {
             constant += &c;
             continue;
         }
-        let split = has_a_sum_factor(&t).then(|| split(&t, &c));
+        let split = has_a_sum_factor(&t).then(|| split(&t));
         match split {
             Some((p, r)) if worth_sharing(&r) => {
                 match groups.iter_mut().find(|(key, _)| *key == r) {
@@ -128,8 +134,8 @@ pub fn share_cofactors(e: &Expr) -> Expr {
             kept.extend(members.into_iter().map(|(_, term)| term));
             continue;
         }
-        let shared = Expr::sum(members.into_iter().map(|(p, _)| p));
-        let merged = Expr::product(factor_list(&shared).into_iter().chain([r]));
+        let shared = Expr::sum(members.into_iter().map(|(p, (_, c))| product(Some(&c), p)));
+        let merged = Expr::product(factor_list(&shared).into_iter().chain([product(None, r)]));
         for (t, c) in merged.terms() {
             if t.is_one() {
                 constant += &c;
