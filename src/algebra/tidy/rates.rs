@@ -430,16 +430,22 @@ fn is_length(b: &Expr) -> bool {
 
 /// Whether some base is a factor of every term of the sum `e`.
 fn shares_a_base(e: &Expr) -> bool {
-    let terms = e.terms();
-    let Some(((first, _), rest)) = terms.split_first() else {
+    // A constant term has no base; a single term has no other to share with.
+    let Kind::Add(constant, ts) = e.kind() else {
         return false;
     };
-    let others: Vec<Vec<(Expr, i64)>> = rest.iter().map(|(t, _)| t.factors()).collect();
-    !rest.is_empty()
-        && first
-            .factors()
-            .iter()
-            .any(|(b, _)| others.iter().all(|fs| fs.iter().any(|(c, _)| c == b)))
+    if !constant.is_zero() || ts.len() < 2 {
+        return false;
+    }
+    let has = |t: &Expr, b: &Expr| match t.kind() {
+        Kind::Mul(_, fs) => fs.iter().any(|(c, _)| c == b),
+        _ => t == b,
+    };
+    let (first, rest) = ts.split_first().expect("two terms");
+    match first.0.kind() {
+        Kind::Mul(_, fs) => fs.iter().any(|(b, _)| rest.iter().all(|(t, _)| has(t, b))),
+        _ => rest.iter().all(|(t, _)| has(t, &first.0)),
+    }
 }
 
 /// Whether `e` holds a rate (`q̇` or `q̈`) anywhere.
