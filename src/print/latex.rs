@@ -175,25 +175,13 @@ pub(super) fn factor(base: &Expr, exp: i64, guarded: bool) -> String {
 fn factor_into(base: &Expr, exp: i64, guarded: bool, out: &mut String) {
     if let Kind::Fun(f, arg) = base.kind() {
         let key = (base.clone(), exp, guarded);
-        let found = FUNCTIONS.with(|m| match m.borrow().get(&key) {
-            Some(s) => {
-                out.push_str(s);
-                true
-            }
-            None => false,
-        });
-        if found {
-            return;
-        }
-        let s = function(*f, arg, exp, guarded);
-        out.push_str(&s);
-        FUNCTIONS.with(|m| {
-            let mut m = m.borrow_mut();
-            if m.len() >= FACTOR_MEMO {
-                m.clear();
-            }
-            m.insert(key, s);
-        });
+        remembered(
+            &FUNCTIONS,
+            key,
+            out,
+            || function(*f, arg, exp, guarded),
+            |_| true,
+        );
         return;
     }
     atom_into(base, out);
@@ -247,7 +235,28 @@ fn atom_into(e: &Expr, out: &mut String) {
         out.push_str(&atom_text(e));
         return;
     }
-    let found = ATOMS.with(|m| match m.borrow().get(e) {
+    remembered(
+        &ATOMS,
+        e.clone(),
+        out,
+        || atom_text(e),
+        |s| s.len() <= ATOM_MEMO_BYTES,
+    );
+}
+
+/// A per-thread memo of printed texts ([`FUNCTIONS`], [`ATOMS`]).
+type TextMemo<K> = std::thread::LocalKey<RefCell<FxHashMap<K, String>>>;
+
+/// The text of `key` written at the end of `out`: copied from `memo` when it holds it, else made by
+/// `text` and remembered if `keep` says so (the memo starts again once it holds [`FACTOR_MEMO`]).
+fn remembered<K: std::hash::Hash + Eq>(
+    memo: &'static TextMemo<K>,
+    key: K,
+    out: &mut String,
+    text: impl FnOnce() -> String,
+    keep: impl FnOnce(&str) -> bool,
+) {
+    let found = memo.with(|m| match m.borrow().get(&key) {
         Some(s) => {
             out.push_str(s);
             true
@@ -257,15 +266,15 @@ fn atom_into(e: &Expr, out: &mut String) {
     if found {
         return;
     }
-    let s = atom_text(e);
+    let s = text();
     out.push_str(&s);
-    if s.len() <= ATOM_MEMO_BYTES {
-        ATOMS.with(|m| {
+    if keep(&s) {
+        memo.with(|m| {
             let mut m = m.borrow_mut();
             if m.len() >= FACTOR_MEMO {
                 m.clear();
             }
-            m.insert(e.clone(), s);
+            m.insert(key, s);
         });
     }
 }
