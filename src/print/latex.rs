@@ -21,15 +21,21 @@ pub(super) fn expr(e: &Expr) -> String {
 
 /// Signed pieces joined into a sum; `nested` sums are compact unless a piece contains a space.
 pub(super) fn sum(pieces: &[Piece], nested: bool) -> String {
-    let mut bodies = String::new();
+    // The bodies written one after another into one string, and joined from their slices.
+    let mut written = String::new();
     let ends: Vec<usize> = pieces
         .iter()
         .map(|p| {
-            product_into(&p.product, &mut bodies);
-            bodies.len()
+            product_into(&p.product, &mut written);
+            written.len()
         })
         .collect();
-    super::join_written(pieces, &bodies, &ends, nested)
+    let starts = std::iter::once(0).chain(ends.iter().copied());
+    let bodies = ends
+        .iter()
+        .zip(starts)
+        .map(|(&end, start)| &written[start..end]);
+    super::join_parts(pieces.iter().map(|p| p.negative), bodies, nested)
 }
 
 /// `\begin{bmatrix} r1 \\ r2 \end{bmatrix}` from rows already joined with `&`.

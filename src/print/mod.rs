@@ -118,45 +118,38 @@ pub fn vector_to_string(v: &[Expr], style: Style) -> String {
 
 /// Joins signed bodies into a sum: `a + b - c`; a `nested` sum (in parentheses or a function
 /// argument) is compact, `a+b-c`, unless a body contains a space. No pieces print as `0`.
-fn join_sum(pieces: &[Piece], bodies: &[String], nested: bool) -> String {
-    let signs: Vec<bool> = pieces.iter().map(|p| p.negative).collect();
-    join_signs(&signs, bodies, nested)
-}
-
-/// [`join_sum`] of bodies written one after another into `bodies`, each ending at its offset in
-/// `ends`: no string for each body.
-fn join_written(pieces: &[Piece], bodies: &str, ends: &[usize], nested: bool) -> String {
-    if pieces.is_empty() {
-        return "0".to_string();
-    }
-    // A body holds a space exactly when their concatenation does there.
-    let spaced = !nested || bodies.contains(' ');
-    let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
-    let mut out = String::with_capacity(bodies.len() + 3 * pieces.len());
-    let mut start = 0;
-    for (i, (p, &end)) in pieces.iter().zip(ends).enumerate() {
-        match (i, p.negative) {
-            (0, false) => {}
-            (0, true) => out.push('-'),
-            (_, false) => out.push_str(plus),
-            (_, true) => out.push_str(minus),
-        }
-        out.push_str(&bodies[start..end]);
-        start = end;
-    }
-    out
+fn join_sum<S: AsRef<str>>(pieces: &[Piece], bodies: &[S], nested: bool) -> String {
+    join_parts(
+        pieces.iter().map(|p| p.negative),
+        bodies.iter().map(AsRef::as_ref),
+        nested,
+    )
 }
 
 /// [`join_sum`] from the signs alone.
-fn join_signs(negative: &[bool], bodies: &[String], nested: bool) -> String {
-    if negative.is_empty() {
+fn join_signs<S: AsRef<str>>(negative: &[bool], bodies: &[S], nested: bool) -> String {
+    join_parts(
+        negative.iter().copied(),
+        bodies.iter().map(AsRef::as_ref),
+        nested,
+    )
+}
+
+/// [`join_sum`] of the signs and bodies as they come (read twice: for their spaces, then joined).
+fn join_parts<'b>(
+    negative: impl Iterator<Item = bool>,
+    bodies: impl Iterator<Item = &'b str> + Clone,
+    nested: bool,
+) -> String {
+    let mut negative = negative.peekable();
+    if negative.peek().is_none() {
         return "0".to_string();
     }
-    let spaced = !nested || bodies.iter().any(|b| b.contains(' '));
+    let spaced = !nested || bodies.clone().any(|b| b.contains(' '));
     let (plus, minus) = if spaced { (" + ", " - ") } else { ("+", "-") };
-    let mut out = String::with_capacity(bodies.iter().map(|b| b.len() + 3).sum());
-    for (i, (negative, body)) in negative.iter().zip(bodies).enumerate() {
-        match (i, *negative) {
+    let mut out = String::with_capacity(bodies.clone().map(|b| b.len() + 3).sum());
+    for (i, (negative, body)) in negative.zip(bodies).enumerate() {
+        match (i, negative) {
             (0, false) => {}
             (0, true) => out.push('-'),
             (_, false) => out.push_str(plus),
