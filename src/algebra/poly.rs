@@ -315,6 +315,14 @@ impl Poly {
         acc.finish()
     }
 
+    /// From terms already in normal form: sorted by monomial (internal order), the monomials
+    /// distinct, the coefficients non-zero (a part of another polynomial's terms, in order).
+    pub(crate) fn from_sorted_terms(terms: Vec<(Mono, Rational)>) -> Poly {
+        debug_assert!(terms.windows(2).all(|w| w[0].0 < w[1].0));
+        debug_assert!(terms.iter().all(|(_, c)| !c.is_zero()));
+        Poly { terms }
+    }
+
     /// The terms, sorted by monomial (internal order), coefficients non-zero.
     pub fn terms(&self) -> &[(Mono, Rational)] {
         &self.terms

@@ -48,7 +48,7 @@ pub(super) fn leading_groups(e: &Expr, ranks: Option<&RankedSum>) -> Option<Vec<
 }
 
 /// [`leading_groups`] of the sum `constant + Σ terms` over `bases`, its terms in the canonical order.
-fn groups_of<C: Borrow<Rational>>(
+pub(super) fn groups_of<C: Borrow<Rational>>(
     bases: &[Expr],
     terms: &[(Vec<(u32, i32)>, C)],
     constant: &Rational,

@@ -38,6 +38,20 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
         v
     }
 
+    /// [`Memo::get_or`] of a key the caller owns: kept as it is when remembered, not cloned.
+    pub fn get_or_owned(&self, key: K, f: impl FnOnce(&K) -> V) -> V {
+        if let Some(v) = self.lock().get(&key) {
+            return v.clone();
+        }
+        let v = f(&key);
+        let mut map = self.lock();
+        if map.len() >= Self::LIMIT {
+            map.clear();
+        }
+        map.insert(key, v.clone());
+        v
+    }
+
     /// Forgets every entry ([`super::forget_memos`]).
     pub fn clear(&self) {
         self.lock().clear();

@@ -37,6 +37,7 @@
 //! (`cos(2 q1 + q2)` is `2 cos(q1 + q2) cos q1 − cos q2`), and the greedy pairing keeps the first
 //! match in canonical order, not the globally shortest result.
 
+mod classes;
 pub mod collect;
 pub mod contract;
 pub mod equation;
@@ -94,13 +95,33 @@ fn is_atom(e: &Expr) -> bool {
 /// [`tidy_by`] starts with (the larger part of its cost on the intermediate vectors of a sheet) is
 /// skipped, and the passes of the contraction work on the polynomial's ranked terms (module
 /// `ranked`) when its atoms are symbols, sines and cosines, as does the grouping by leading
-/// parameter after them (module `leading`). The same result as `tidy_by(&p.to_expr(), grouping)`.
+/// parameter after them (module `leading`); by leading parameter, each class of terms of one
+/// leading parameter alone, remembered (module `classes`). The same result as
+/// `tidy_by(&p.to_expr(), grouping)`.
 pub fn tidy_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
     // A single term is its own display form: no rule has two terms to merge, and the grouping
     // gives back the canonical product it started from.
     if p.len() <= 1 {
         return p.to_expr();
     }
+    // By leading parameter, class by class (module `classes`): the classes recur from vector to
+    // vector, and each is remembered.
+    if grouping == Grouping::Leading {
+        if let Some(shown) = classes::tidy_leading(p) {
+            #[cfg(debug_assertions)]
+            assert_eq!(
+                shown,
+                whole_poly_by(p, grouping),
+                "class by class as the whole sum"
+            );
+            return shown;
+        }
+    }
+    whole_poly_by(p, grouping)
+}
+
+/// [`tidy_poly_by`] of a sum of two terms or more, the whole sum at once.
+fn whole_poly_by(p: &crate::algebra::Poly, grouping: Grouping) -> Expr {
     let (contracted, ranks) = match p.ranked() {
         Some(r) => ranked::contract_ranked(r),
         None => (contract::contract_normal(&p.to_expr()), None),
@@ -115,6 +136,7 @@ pub fn forget_memos() {
     group::DISPLAYED.clear();
     factor::FACTORED.clear();
     rates::GROUPED.clear();
+    classes::CLASSES.clear();
 }
 
 /// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial
