@@ -200,6 +200,25 @@ impl Derivation {
         cell.get_or_init(|| ne_symbolic::derive(&self.robot, self.kinematics(), frame))
     }
 
+    /// [`Derivation::newton_euler`] derived here unless `stop` says to give up (asked before each
+    /// link of either recursion): for a thread that derives it ahead, before it is known to be
+    /// needed. `None` when given up; the derivation, once done, is the one every caller shares.
+    pub fn newton_euler_unless(
+        &self,
+        frame: Frame,
+        stop: &dyn Fn() -> bool,
+    ) -> Option<&NewtonEuler<Poly>> {
+        let cell = match frame {
+            Frame::Body => &self.ne_body,
+            Frame::Inertial => &self.ne_inertial,
+        };
+        if let Some(ne) = cell.get() {
+            return Some(ne);
+        }
+        let ne = ne_symbolic::derive_until(&self.robot, self.kinematics(), frame, stop)?;
+        Some(cell.get_or_init(|| ne))
+    }
+
     /// Whether the expanded Euler–Lagrange derivation fits: every diagonal entry `d_kk` of `D(q)`
     /// expands within `limit` terms. Probed on the compact `D` (composite rigid bodies), expanding
     /// shared names once and stopping as soon as one passes the limit, so a robot too large to
@@ -308,5 +327,42 @@ impl Derivation {
     /// The generalised coordinates `q1..qn`.
     pub fn coordinates(&self) -> Vec<Symbol> {
         (1..=self.robot.dof() as u32).map(Symbol::q).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scara() -> Derivation {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/scara.scene");
+        let text = std::fs::read_to_string(path).unwrap();
+        Derivation::new(crate::parse::parse_scene(&text).unwrap().robot).unwrap()
+    }
+
+    /// A Newton–Euler derivation given up leaves nothing behind, and asks before each link; one not
+    /// given up is the usual derivation, the one every caller then shares.
+    #[test]
+    fn a_newton_euler_derivation_given_up_leaves_nothing_behind() {
+        let der = scara();
+        let asked = std::cell::Cell::new(0);
+        let third = || {
+            asked.set(asked.get() + 1);
+            asked.get() == 3
+        };
+        assert!(der.newton_euler_unless(Frame::Inertial, &third).is_none());
+        assert_eq!(asked.get(), 3, "given up when asked the third time");
+        assert!(der.ne_inertial.get().is_none(), "nothing kept");
+        let usual = ne_symbolic::derive(der.robot(), der.kinematics(), Frame::Inertial);
+        let ahead = der
+            .newton_euler_unless(Frame::Inertial, &|| false)
+            .expect("not given up");
+        assert_eq!(ahead.tau, usual.tau);
+        assert_eq!(ahead.f, usual.f);
+        assert_eq!(ahead.n, usual.n);
+        assert!(std::ptr::eq(ahead, der.newton_euler(Frame::Inertial)));
+        // Once derived, it is not derived again: `stop` is not even asked.
+        let again = der.newton_euler_unless(Frame::Inertial, &|| unreachable!());
+        assert!(std::ptr::eq(again.expect("derived"), ahead));
     }
 }

@@ -3,7 +3,7 @@
 
 use super::kinematics::Kinematics;
 use super::model::{JointKind, Robot};
-use super::newton_euler::{recurse_with, Body, NewtonEuler, Part, Step};
+use super::newton_euler::{recurse_until, Body, NewtonEuler, Part, Step};
 use super::vec3::{Mat3, Vec3};
 use crate::algebra::{to_poly, Poly, Symbol};
 
@@ -135,11 +135,22 @@ fn build(robot: &Robot, kin: &Kinematics, frame: Frame, rotate_inertia: bool) ->
 /// (a rotation preserves the cross product): the same polynomials, since the normal form is
 /// canonical, without ever expanding `I⁰_i`.
 pub fn derive(robot: &Robot, kin: &Kinematics, frame: Frame) -> NewtonEuler<Poly> {
+    derive_until(robot, kin, frame, &|| false).expect("a derivation never stopped runs to the end")
+}
+
+/// [`derive()`], given up (`None`) as soon as `stop` says so, asked before each link of either
+/// recursion ([`recurse_until`]).
+pub fn derive_until(
+    robot: &Robot,
+    kin: &Kinematics,
+    frame: Frame,
+    stop: &dyn Fn() -> bool,
+) -> Option<NewtonEuler<Poly>> {
     match frame {
-        Frame::Body => recurse_with(&steps(robot, kin, frame), None),
+        Frame::Body => recurse_until(&steps(robot, kin, frame), None, stop),
         Frame::Inertial => {
             let steps = build(robot, kin, frame, false);
-            recurse_with(
+            recurse_until(
                 &steps,
                 Some(&|i, part, alpha, omega| {
                     let local = match part {
@@ -153,6 +164,7 @@ pub fn derive(robot: &Robot, kin: &Kinematics, frame: Frame) -> NewtonEuler<Poly
                         r.mul_vec(&omega_i.cross(&local.mul_vec(&omega_i))),
                     ))
                 }),
+                stop,
             )
         }
     }

@@ -105,7 +105,8 @@ pub struct NewtonEuler<S> {
 
 /// Runs both recursions.
 pub fn recurse<S: Scalar>(steps: &[Step<S>]) -> NewtonEuler<S> {
-    run(steps, &book_euler(steps), Moment::Book)
+    run(steps, &book_euler(steps), Moment::Book, &|| false)
+        .expect("a recursion never stopped runs to the end")
 }
 
 /// The Euler term with [`Step::inertia`] (or the payload's [`Body::inertia`]).
@@ -144,13 +145,30 @@ pub fn recurse_with<S: Scalar>(
     steps: &[Step<S>],
     euler: Option<&EulerTerm<'_, S>>,
 ) -> NewtonEuler<S> {
+    recurse_until(steps, euler, &|| false).expect("a recursion never stopped runs to the end")
+}
+
+/// [`recurse_with`], given up (`None`) as soon as `stop` says so, asked before each link of either
+/// recursion: for a thread that derives ahead what may turn out not to be needed.
+pub fn recurse_until<S: Scalar>(
+    steps: &[Step<S>],
+    euler: Option<&EulerTerm<'_, S>>,
+    stop: &dyn Fn() -> bool,
+) -> Option<NewtonEuler<S>> {
     match euler {
-        Some(e) => run(steps, e, Moment::Split),
-        None => run(steps, &book_euler(steps), Moment::Split),
+        Some(e) => run(steps, e, Moment::Split, stop),
+        None => run(steps, &book_euler(steps), Moment::Split, stop),
     }
 }
 
-fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -> NewtonEuler<S> {
+/// Both recursions, `None` once `stop` says so (asked before each link; a closure that never
+/// stops costs nothing once inlined).
+fn run<S: Scalar, F: Fn() -> bool + ?Sized>(
+    steps: &[Step<S>],
+    euler: &EulerTerm<'_, S>,
+    moment: Moment,
+    stop: &F,
+) -> Option<NewtonEuler<S>> {
     let n = steps.len();
     let (mut omega, mut alpha, mut a_c, mut a_e, mut g) = (
         Vec::with_capacity(n),
@@ -164,6 +182,9 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
     let mut a_payload = None;
     let two = S::from_rational(&crate::algebra::Rational::int(2));
     for (idx, st) in steps.iter().enumerate() {
+        if stop() {
+            return None;
+        }
         let i = idx + 1;
         let w0 = st.rot_in.mul_vec(&w_prev);
         let al0 = st.rot_in.mul_vec(&al_prev);
@@ -214,6 +235,9 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
     let mut tau = vec![S::zero(); n];
     let zero = Vec3::<S>::zero();
     for i in (0..n).rev() {
+        if stop() {
+            return None;
+        }
         let st = &steps[i];
         // Quantities of link i+1 rotated into the working frame of link i.
         // (f and the moments of link i+1 are read in place: no copy of the large accumulated
@@ -276,7 +300,7 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
         }
         f[i] = fi;
     }
-    NewtonEuler {
+    Some(NewtonEuler {
         omega,
         alpha,
         a_c,
@@ -286,5 +310,5 @@ fn run<S: Scalar>(steps: &[Step<S>], euler: &EulerTerm<'_, S>, moment: Moment) -
         f,
         n: moments,
         tau,
-    }
+    })
 }

@@ -213,6 +213,17 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         let _ = proved.set(Some(text));
     };
     let helper = || {
+        // While this thread derives the expanded D that decides whether a small robot's sheet is
+        // compact (nearly never), the helper derives the Newton–Euler recursion of the inertial
+        // frame, the costliest derivation an expanded sheet tidies and proves from, giving up
+        // before the next link once the sheet turns out compact (the SCARA arm's sheet,
+        // interleaved, 3 × 30 runs: about 0.3 ms less; a general 4R arm, compact, as before).
+        if der.robot().dof() <= EXPANDED_FIRST
+            && frames.contains(&Frame::Inertial)
+            && compact.get().is_none()
+        {
+            der.newton_euler_unless(Frame::Inertial, &|| compact.get() == Some(&true));
+        }
         if der.robot().dof() > EXPANDED_FIRST && compact.get().is_none_or(|&c| c) {
             for &frame in frames.iter() {
                 program(frame);
