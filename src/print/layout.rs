@@ -216,6 +216,86 @@ fn printed(terms: Vec<Expr>) -> Vec<Printed> {
         .collect()
 }
 
+/// The room for a row's terms beside `lhs = ` (in [`width`] units).
+fn room_beside(lhs: Option<&str>) -> usize {
+    let prefix = lhs.map_or(0, |l| width(l) + 2);
+    BUDGET.saturating_sub(prefix).max(20)
+}
+
+/// `lhs = terms` laid out on rows when every term fits a row beside `lhs` (then no sum is
+/// abbreviated, and the rows are a function of the terms alone, whichever thread lays them out):
+/// what [`Layout`] writes of them (`Layout::printed_terms`); the terms back otherwise.
+fn rows_if_they_fit(lhs: &str, terms: Vec<Printed>) -> Result<String, Vec<Printed>> {
+    let room = room_beside(Some(lhs));
+    if terms.iter().any(|(_, _, w)| *w > room) {
+        return Err(terms);
+    }
+    let pieces: Vec<(String, usize)> = terms.into_iter().map(|(_, s, w)| (s, w)).collect();
+    Ok(rows(Some(lhs), &fill_lines(&pieces, room), None))
+}
+
+/// Terms (each its LaTeX and width, the first with its sign) joined into lines of at most `room`
+/// width units: `t1 + t2`, then ` - t3 + t4` (each later line starts with its sign); `0` for none.
+fn fill_lines(pieces: &[(String, usize)], room: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    let mut used = 0;
+    for (i, (p, w)) in pieces.iter().enumerate() {
+        // Joined with its sign: ` - ` is as wide as the `-` it replaces, ` + ` adds a sign.
+        let (sign, body, w) = if i == 0 {
+            ("", p.as_str(), *w)
+        } else if let Some(rest) = p.strip_prefix('-') {
+            (" - ", rest, *w)
+        } else {
+            (" + ", p.as_str(), w + 2)
+        };
+        if !line.is_empty() && used + w > room {
+            let capacity = 2 * line.len();
+            let full = std::mem::replace(&mut line, String::with_capacity(capacity));
+            lines.push(full);
+            used = 0;
+        }
+        used += w;
+        line.push_str(sign);
+        line.push_str(body);
+    }
+    if pieces.is_empty() {
+        line.push('0');
+    }
+    lines.push(line);
+    lines
+}
+
+/// `lhs = lines = rhs` as display math: `\[ … \]` for one line, else an `align*` whose later rows
+/// are indented.
+fn rows(lhs: Option<&str>, lines: &[String], rhs: Option<&str>) -> String {
+    let rhs_text = rhs.map(|r| format!(" = {r}")).unwrap_or_default();
+    if lines.len() == 1 {
+        let l = lhs.map(|l| format!("{l} = ")).unwrap_or_default();
+        format!("\\[ {l}{}{rhs_text} \\]\n", lines[0])
+    } else {
+        let l = lhs.map(|l| format!("{l} ")).unwrap_or_default();
+        let eq = if lhs.is_some() { "&= " } else { "& " };
+        let last = lines.len() - 1;
+        let body: Vec<String> = lines
+            .iter()
+            .enumerate()
+            .map(|(i, line)| {
+                let end = if i == last { rhs_text.as_str() } else { "" };
+                if i == 0 {
+                    format!("  {l}{eq}{line}{end}")
+                } else {
+                    format!("  &\\quad {}{end}", line.trim_start())
+                }
+            })
+            .collect();
+        format!(
+            "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+            body.join(" \\\\\n")
+        )
+    }
+}
+
 /// A display term, its LaTeX and the LaTeX's [`width`]: measured where it is printed (for the
 /// prepared vectors and equations, on the thread that prepared them), not again by the layout.
 type Printed = (Expr, String, usize);
@@ -237,13 +317,25 @@ pub struct PreparedVector {
 enum VectorLayout {
     /// On one line: each component's LaTeX.
     Line(Vec<String>),
-    /// Component by component: each component's terms with their LaTeX.
-    Components(Vec<Vec<Printed>>),
+    /// Component by component.
+    Components(Vec<Component>),
+}
+
+/// A component of a [`PreparedVector`] laid out on rows of its own.
+#[derive(Clone, Debug)]
+enum Component {
+    /// Laid out already: every term fits a row, so no sum is abbreviated, and the rows are a
+    /// function of the terms alone ([`rows_if_they_fit`]).
+    Rows(String),
+    /// Its terms with their LaTeX, for the layout to fill the rows with (it names the sums of a
+    /// term too wide for a row, in order).
+    Terms(Vec<Printed>),
 }
 
 impl PreparedVector {
-    /// `lhs = shown` prepared: one line if it fits, else each component term by term.
-    pub fn new(lhs: &str, shown: Vec<Expr>) -> PreparedVector {
+    /// `lhs = shown` prepared: one line if it fits, else each component term by term, its rows
+    /// laid out here when every term fits one (`component(k)` names component `k`, `(lhs)_x`).
+    pub fn new(lhs: &str, shown: Vec<Expr>, component: &dyn Fn(usize) -> String) -> PreparedVector {
         // The widest cell that fits beside `lhs = `; the first wider one decides, and the cells
         // after it are never printed whole.
         let beside = width(lhs) + 6;
@@ -261,7 +353,14 @@ impl PreparedVector {
             VectorLayout::Components(
                 shown
                     .iter()
-                    .map(|e| printed(flat_terms(std::slice::from_ref(e))))
+                    .enumerate()
+                    .map(|(k, e)| {
+                        let terms = printed(flat_terms(std::slice::from_ref(e)));
+                        match rows_if_they_fit(&component(k), terms) {
+                            Ok(rows) => Component::Rows(rows),
+                            Err(terms) => Component::Terms(terms),
+                        }
+                    })
                     .collect(),
             )
         };
@@ -559,34 +658,8 @@ impl Layout {
         rhs: Option<&str>,
     ) -> String {
         let mut later: Vec<(String, Expr)> = Vec::new();
-        let prefix = lhs.map_or(0, |l| width(l) + 2);
-        let room = BUDGET.saturating_sub(prefix).max(20);
-        let lines = self.lines(terms, room, &mut later);
-        let rhs_text = rhs.map(|r| format!(" = {r}")).unwrap_or_default();
-        let mut out = if lines.len() == 1 {
-            let l = lhs.map(|l| format!("{l} = ")).unwrap_or_default();
-            format!("\\[ {l}{}{rhs_text} \\]\n", lines[0])
-        } else {
-            let l = lhs.map(|l| format!("{l} ")).unwrap_or_default();
-            let eq = if lhs.is_some() { "&= " } else { "& " };
-            let last = lines.len() - 1;
-            let body: Vec<String> = lines
-                .iter()
-                .enumerate()
-                .map(|(i, line)| {
-                    let end = if i == last { rhs_text.as_str() } else { "" };
-                    if i == 0 {
-                        format!("  {l}{eq}{line}{end}")
-                    } else {
-                        format!("  &\\quad {}{end}", line.trim_start())
-                    }
-                })
-                .collect();
-            format!(
-                "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
-                body.join(" \\\\\n")
-            )
-        };
+        let lines = self.lines(terms, room_beside(lhs), &mut later);
+        let mut out = rows(lhs, &lines, rhs);
         if !later.is_empty() {
             out.push_str("where\n");
             for (name, e) in later {
@@ -609,33 +682,7 @@ impl Layout {
             .into_iter()
             .map(|(t, s, w)| self.fit_term(&t, s, w, room, later))
             .collect();
-        let mut lines: Vec<String> = Vec::new();
-        let mut line = String::new();
-        let mut used = 0;
-        for (i, (p, w)) in pieces.iter().enumerate() {
-            // Joined with its sign: ` - ` is as wide as the `-` it replaces, ` + ` adds a sign.
-            let (sign, body, w) = if i == 0 {
-                ("", p.as_str(), *w)
-            } else if let Some(rest) = p.strip_prefix('-') {
-                (" - ", rest, *w)
-            } else {
-                (" + ", p.as_str(), w + 2)
-            };
-            if !line.is_empty() && used + w > room {
-                let capacity = 2 * line.len();
-                let full = std::mem::replace(&mut line, String::with_capacity(capacity));
-                lines.push(full);
-                used = 0;
-            }
-            used += w;
-            line.push_str(sign);
-            line.push_str(body);
-        }
-        if pieces.is_empty() {
-            line.push('0');
-        }
-        lines.push(line);
-        lines
+        fill_lines(&pieces, room)
     }
 
     /// Equations `Σ terms = rhs` (the terms in display order, `rhs` LaTeX) as one `align*`
@@ -978,7 +1025,7 @@ impl Layout {
         grouping: Grouping,
     ) -> String {
         let shown: Vec<Expr> = v.iter().map(|e| e.tidy_by(grouping)).collect();
-        self.vector_prepared(lhs, PreparedVector::new(lhs, shown), component)
+        self.vector_prepared(lhs, PreparedVector::new(lhs, shown, component), component)
     }
 
     /// [`Layout::vector`] of components already in their display form and printed
@@ -989,7 +1036,7 @@ impl Layout {
         prepared: PreparedVector,
         component: &dyn Fn(usize) -> String,
     ) -> String {
-        let terms = match prepared.layout {
+        let components = match prepared.layout {
             VectorLayout::Line(cells) => {
                 let column: Vec<Vec<String>> = cells.into_iter().map(|c| vec![c]).collect();
                 return format!(
@@ -997,11 +1044,16 @@ impl Layout {
                     print::latex_matrix_of_cells(&column)
                 );
             }
-            VectorLayout::Components(terms) => terms,
+            VectorLayout::Components(components) => components,
         };
         let mut out = String::new();
-        for (k, t) in terms.into_iter().enumerate() {
-            out.push_str(&self.printed_terms(Some(&component(k)), t, None));
+        for (k, c) in components.into_iter().enumerate() {
+            match c {
+                Component::Rows(rows) => out.push_str(&rows),
+                Component::Terms(t) => {
+                    out.push_str(&self.printed_terms(Some(&component(k)), t, None));
+                }
+            }
         }
         out
     }
@@ -1309,6 +1361,34 @@ mod tests {
             vec![first, second.join().expect("no panic")]
         });
         assert_eq!(Layout::new().equations_prepared(prepared), out);
+    }
+
+    /// A component laid out ahead ([`rows_if_they_fit`], on any thread) is what the layout writes
+    /// from its terms; a component with a term too wide for a row is left to the layout.
+    #[test]
+    fn rows_laid_out_ahead_are_the_layouts() {
+        let many: Vec<String> = (1..=40).map(|i| format!("m{i}*g*cos(q1)")).collect();
+        let wide: Vec<String> = (1..=30).map(|i| format!("m{i}")).collect();
+        let mut ahead = 0;
+        for (text, fits) in [
+            ("m1*g + m2*lc2*qdd1", true),
+            (many.join(" + ").as_str(), true),
+            (&format!("({}) * qdd1 + m1*g", wide.join(" + ")), false),
+        ] {
+            let terms = printed(flat_terms(&[parse_expr(text).unwrap()]));
+            let lhs = "(f_{1})_{x}";
+            match rows_if_they_fit(lhs, terms.clone()) {
+                Ok(rows) => {
+                    ahead += 1;
+                    assert_eq!(rows, Layout::new().printed_terms(Some(lhs), terms, None));
+                }
+                Err(back) => {
+                    assert_eq!(back, terms);
+                    assert!(!fits, "{text}");
+                }
+            }
+        }
+        assert_eq!(ahead, 2);
     }
 
     #[test]

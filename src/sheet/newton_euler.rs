@@ -143,7 +143,7 @@ impl<'d> Tidied<'d> {
                         Some((i, k)) => self.ready(*i).shown()[*k].clone(),
                     })
                     .collect();
-            PreparedVector::new(name, shown)
+            PreparedVector::new(name, shown, &|k| component_name(name, k))
         }));
         match prepared {
             Ok(p) => {
@@ -250,12 +250,17 @@ fn vector(
             sizes.join(", ")
         );
     }
-    let base = name.to_string();
-    let component = move |k: usize| format!("({base})_{{{}}}", ["x", "y", "z"][k]);
+    let component = |k: usize| component_name(name, k);
     match tidied.and_then(|t| t.get(frame, name)) {
         Some(shown) => lay.vector_prepared(name, shown, &component),
         None => lay.vector(name, &v.0, &component, Grouping::Leading),
     }
+}
+
+/// The name of component `k` of the vector `name` when it is written component by component:
+/// `(name)_{x}`, `(name)_{y}`, `(name)_{z}`.
+fn component_name(name: &str, k: usize) -> String {
+    format!("({name})_{{{}}}", ["x", "y", "z"][k])
 }
 
 /// The moment equation of the backward recursion as `dynamics::newton_euler` computes it,
