@@ -322,7 +322,7 @@ fn document<'t>(
         ),
     }
     out.push_str("\\end{document}\n");
-    let (out, abbreviated) = abbreviate_trig(&out, der);
+    let (mut out, abbreviated) = abbreviate_trig(&out, der);
     let notation = if abbreviated {
         "We write $s_{i} = \\sin q_{i}$, $c_{i} = \\cos q_{i}$, and for sums of joint angles \
          $s_{ij} = \\sin(q_i + q_j)$, $c_{ij} = \\cos(q_i + q_j)$, $s_{ijk} = \\sin(q_i + q_j + q_k)$, \
@@ -330,7 +330,11 @@ fn document<'t>(
     } else {
         ""
     };
-    out.replacen(NOTATION, notation, 1)
+    // In place: the paragraph is near the start, and the rest of the document moves once.
+    if let Some(at) = out.find(NOTATION) {
+        out.replace_range(at..at + NOTATION.len(), notation);
+    }
+    out
 }
 
 /// The sheet with `\sin`/`\cos` of a joint angle or of a plain sum of joint angles written as the
