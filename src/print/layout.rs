@@ -959,7 +959,7 @@ impl Layout {
 
     /// `lhs = [rows]` as one `bmatrix` when it fits the line, otherwise entry by entry as
     /// `entry(i, j) = …` (1-based), only `j >= i` when `symmetric`. Entries are tidied by `grouping`.
-    pub fn matrix<T: Tidy>(
+    pub fn matrix<T: Tidy + PartialEq>(
         &mut self,
         lhs: &str,
         rows: &[Vec<T>],
@@ -967,18 +967,27 @@ impl Layout {
         symmetric: bool,
         grouping: Grouping,
     ) -> String {
-        let shown: Vec<Vec<Expr>> = rows
-            .iter()
-            .map(|r| r.iter().map(|e| e.tidy_by(grouping)).collect())
-            .collect();
-        let cells: Vec<Vec<String>> = shown
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .map(|e| print::to_string(e, Style::Latex))
-                    .collect()
-            })
-            .collect();
+        // Below the diagonal of a symmetric matrix, an entry equal to its mirror image (every one,
+        // as a rule) is shown and printed as that one was.
+        let mut shown: Vec<Vec<Expr>> = Vec::with_capacity(rows.len());
+        let mut cells: Vec<Vec<String>> = Vec::with_capacity(rows.len());
+        for (i, r) in rows.iter().enumerate() {
+            let mut shown_row = Vec::with_capacity(r.len());
+            let mut cell_row = Vec::with_capacity(r.len());
+            for (j, e) in r.iter().enumerate() {
+                let mirror = (symmetric && j < i && rows.get(j).and_then(|m| m.get(i)) == Some(e))
+                    .then(|| (shown[j][i].clone(), cells[j][i].clone()));
+                let (s, c) = mirror.unwrap_or_else(|| {
+                    let s = e.tidy_by(grouping);
+                    let c = print::to_string(&s, Style::Latex);
+                    (s, c)
+                });
+                shown_row.push(s);
+                cell_row.push(c);
+            }
+            shown.push(shown_row);
+            cells.push(cell_row);
+        }
         let cols = cells.first().map_or(0, Vec::len);
         let col_width: usize = (0..cols)
             .map(|j| cells.iter().map(|r| width(&r[j])).max().unwrap_or(0) + 3)
@@ -1389,6 +1398,19 @@ mod tests {
             }
         }
         assert_eq!(ahead, 2);
+    }
+
+    /// Below the diagonal of a matrix said to be symmetric, an entry is taken from its mirror image
+    /// only when the two are equal: one that differs is shown as it is.
+    #[test]
+    fn a_symmetric_matrix_takes_only_equal_mirror_entries() {
+        let e = |t: &str| parse_expr(t).unwrap();
+        let entry = |i: usize, j: usize| format!("M_{{{i}{j}}}");
+        for (lower, shown) in [("a", "a & m_{2}"), ("b", "b & m_{2}")] {
+            let rows = vec![vec![e("m1"), e("a")], vec![e(lower), e("m2")]];
+            let out = Layout::new().matrix("M", &rows, &entry, true, Grouping::Leading);
+            assert!(out.contains(shown), "{out}");
+        }
     }
 
     #[test]
