@@ -8,6 +8,7 @@
 //! never grows it without bound.
 
 use crate::algebra::fast_hash::FxHashMap;
+use std::borrow::Cow;
 use std::hash::Hash;
 use std::sync::{LazyLock, Mutex, MutexGuard};
 
@@ -26,29 +27,25 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
     /// `f(key)`, remembered: computed (outside the lock, so threads never wait for each other's
     /// work) when the memo does not hold it.
     pub fn get_or(&self, key: &K, f: impl FnOnce(&K) -> V) -> V {
-        if let Some(v) = self.lock().get(key) {
-            return v.clone();
-        }
-        let v = f(key);
-        let mut map = self.lock();
-        if map.len() >= Self::LIMIT {
-            map.clear();
-        }
-        map.insert(key.clone(), v.clone());
-        v
+        self.get_or_cow(Cow::Borrowed(key), f)
     }
 
     /// [`Memo::get_or`] of a key the caller owns: kept as it is when remembered, not cloned.
     pub fn get_or_owned(&self, key: K, f: impl FnOnce(&K) -> V) -> V {
-        if let Some(v) = self.lock().get(&key) {
+        self.get_or_cow(Cow::Owned(key), f)
+    }
+
+    /// [`Memo::get_or`] of a key borrowed (cloned when remembered) or owned (kept).
+    fn get_or_cow(&self, key: Cow<'_, K>, f: impl FnOnce(&K) -> V) -> V {
+        if let Some(v) = self.lock().get(key.as_ref()) {
             return v.clone();
         }
-        let v = f(&key);
+        let v = f(key.as_ref());
         let mut map = self.lock();
         if map.len() >= Self::LIMIT {
             map.clear();
         }
-        map.insert(key, v.clone());
+        map.insert(key.into_owned(), v.clone());
         v
     }
 
