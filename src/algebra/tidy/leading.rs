@@ -103,28 +103,57 @@ pub(super) fn groups_of<C: Borrow<Rational>>(
     Some(items)
 }
 
+/// The factors [`groups_of`] makes of the one group of a sum whose terms all hold its key, given
+/// the group's terms with the key divided out: the sum `constant + Σ terms` over `bases` (its terms
+/// in the canonical order of their monomials). `None` when a base is not plain, `Some(None)` for
+/// the zero sum (a group whose terms cancel makes nothing).
+pub(super) fn key_divided<C: Borrow<Rational>>(
+    bases: &[Expr],
+    terms: &[(Vec<(u32, i32)>, C)],
+    constant: &Rational,
+) -> Option<Option<Vec<Expr>>> {
+    if !bases.iter().all(plain) {
+        return None;
+    }
+    if terms.is_empty() && constant.is_zero() {
+        return Some(None);
+    }
+    debug_assert!(terms
+        .windows(2)
+        .all(|w| cmp_ranked(&w[0].0, &w[1].0).is_lt()));
+    Some(Some(factored(bases, terms, constant)))
+}
+
 /// A base [`super::factor::factor_list`] leaves as it is and [`Ranked::monomial_over`] builds
 /// as it stands: a symbol, π, a sine or cosine of a sum of symbols (not a surd).
 fn plain(b: &Expr) -> bool {
     factor::plain(b) && b.is_plain_base()
 }
 
-/// The factors of `Σ terms + constant` (the terms sorted, none of them constant; a group holds one
-/// of them at least), their rates grouped: what `factor_list` of the canonical sum gives, each
+/// The factors of `Σ terms + constant` (the terms sorted, none of them constant; a term or a
+/// non-zero constant at least), their rates grouped (the first a number: the content, with the
+/// sign): what `factor_list` of the canonical sum gives, each
 /// factor through `group_rates`. The content and the common monomial come out of a sum of two
 /// terms or more; a single term is its own factors.
-fn factored(bases: &[Expr], terms: &[Term], constant: &Rational) -> Vec<Expr> {
+fn factored<C: Borrow<Rational>>(
+    bases: &[Expr],
+    terms: &[(Vec<(u32, i32)>, C)],
+    constant: &Rational,
+) -> Vec<Expr> {
     match (terms, constant.is_zero()) {
         ([], _) => return vec![Expr::num(constant.clone())],
         ([(factors, c)], true) => {
-            return vec![Expr::num(c.clone()), Ranked::monomial_over(bases, factors)];
+            return vec![
+                Expr::num(c.borrow().clone()),
+                Ranked::monomial_over(bases, factors),
+            ];
         }
         _ => {}
     }
     // The content: the gcd of every coefficient, the constant's too.
     let content = terms
         .iter()
-        .fold(constant.clone(), |acc, (_, c)| acc.gcd(c));
+        .fold(constant.clone(), |acc, (_, c)| acc.gcd(c.borrow()));
     // The common monomial: each base of the first term, to the power every term holds it with
     // (the smallest if all positive, the one nearest zero if all negative); a constant holds none.
     let first = &terms[0].0;
@@ -161,7 +190,7 @@ fn factored(bases: &[Expr], terms: &[Term], constant: &Rational) -> Vec<Expr> {
                     (k != m).then_some((r, k - m))
                 })
                 .collect();
-            (rest, c.clone())
+            (rest, c.borrow().clone())
         })
         .collect();
     divided.sort_by(|x, y| cmp_ranked(&x.0, &y.0));

@@ -136,7 +136,7 @@ pub fn forget_memos() {
     group::DISPLAYED.clear();
     factor::FACTORED.clear();
     rates::GROUPED.clear();
-    classes::CLASSES.clear();
+    classes::QUOTIENTS.clear();
 }
 
 /// Something shown in the house style: an expression ([`tidy_by`]) or a polynomial
