@@ -148,6 +148,9 @@ pub struct Layout {
     /// The sums abbreviated so far from measured display terms ([`Layout::measured_rows`]), by
     /// their hash: each sum (kept to compare with, [`measured_eq`]) with its number.
     named_measured: HashMap<u64, Vec<(Arc<MeasuredSum>, usize)>>,
+    /// Each term fitted to a row with its sum abbreviated ([`Layout::fit_term`]), by the term and
+    /// the room: its LaTeX and width, the same whenever it is met again (its sum keeps its name).
+    fitted: HashMap<(Expr, usize), (String, usize)>,
 }
 
 /// One side of an equation to lay out: terms in the house style, or the display terms of a large side
@@ -909,6 +912,10 @@ impl Layout {
         if w <= room {
             return (s, w);
         }
+        let key = (t.clone(), room);
+        if let Some(fitted) = self.fitted.get(&key) {
+            return fitted.clone();
+        }
         let Kind::Mul(c, factors) = t.kind() else {
             return (s, w);
         };
@@ -954,6 +961,7 @@ impl Layout {
         }
         let s = term_string(&shorter);
         let w = width(&s);
+        self.fitted.insert(key, (s.clone(), w));
         (s, w)
     }
 
@@ -1464,6 +1472,17 @@ mod tests {
         );
         assert!(third.contains("\\Xi_{1} \\dot{q}_{1} = u_{3}"), "{third}");
         assert!(!third.contains("where"), "{third}");
+        // The first term met again (fitted once, remembered): written as it was, its sum not
+        // given again.
+        let again = lay.terms(
+            None,
+            &[parse_expr(&format!("({sum}) * qdd1")).unwrap()],
+            Some("u_{4}"),
+        );
+        assert!(
+            again.contains("\\Xi_{1} \\ddot{q}_{1} = u_{4}") && !again.contains("where"),
+            "{again}"
+        );
         // A fresh layout (another document) names it anew.
         let alone = Layout::new().terms(
             None,
