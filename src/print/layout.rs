@@ -219,6 +219,17 @@ fn printed(terms: Vec<Expr>) -> Vec<Printed> {
         .collect()
 }
 
+/// The [`width`] of printed terms joined on one line ([`fill_lines`]): theirs, and two units for
+/// each `+` put between them (a `-` is a term's own).
+fn line_width(terms: &[Printed]) -> usize {
+    let plus = terms
+        .iter()
+        .skip(1)
+        .filter(|(_, s, _)| !s.starts_with('-'))
+        .count();
+    terms.iter().map(|(_, _, w)| w).sum::<usize>() + 2 * plus
+}
+
 /// The room for a row's terms beside `lhs = ` (in [`width`] units).
 fn room_beside(lhs: Option<&str>) -> usize {
     let prefix = lhs.map_or(0, |l| width(l) + 2);
@@ -339,30 +350,42 @@ impl PreparedVector {
     /// `lhs = shown` prepared: one line if it fits, else each component term by term, its rows
     /// laid out here when every term fits one (`component(k)` names component `k`, `(lhs)_x`).
     pub fn new(lhs: &str, shown: Vec<Expr>, component: &dyn Fn(usize) -> String) -> PreparedVector {
-        // The widest cell that fits beside `lhs = `; the first wider one decides, and the cells
-        // after it are never printed whole.
+        // Each component printed term by term, once: a component's cell on one line is its terms
+        // joined with their signs (what printing it whole writes, checked in debug builds), and as
+        // wide as they are with two units for each `+` between them. The widest cell that fits
+        // beside `lhs = ` decides.
         let beside = width(lhs) + 6;
-        let mut cells: Vec<String> = Vec::with_capacity(shown.len());
-        let fits = beside <= BUDGET
-            && shown.iter().all(|e| {
-                let cell = print::to_string(e, Style::Latex);
-                let fits = width(&cell) <= BUDGET - beside;
-                cells.push(cell);
-                fits
-            });
+        let terms: Vec<Vec<Printed>> = shown
+            .iter()
+            .map(|e| printed(flat_terms(std::slice::from_ref(e))))
+            .collect();
+        let fits = beside <= BUDGET && terms.iter().all(|t| line_width(t) <= BUDGET - beside);
         let layout = if fits {
+            let cells: Vec<String> = terms
+                .into_iter()
+                .map(|t| {
+                    let pieces: Vec<(String, usize)> =
+                        t.into_iter().map(|(_, s, w)| (s, w)).collect();
+                    fill_lines(&pieces, usize::MAX).swap_remove(0)
+                })
+                .collect();
+            #[cfg(debug_assertions)]
+            for (cell, e) in cells.iter().zip(&shown) {
+                assert_eq!(
+                    *cell,
+                    print::to_string(e, Style::Latex),
+                    "a cell joined from its terms"
+                );
+            }
             VectorLayout::Line(cells)
         } else {
             VectorLayout::Components(
-                shown
-                    .iter()
+                terms
+                    .into_iter()
                     .enumerate()
-                    .map(|(k, e)| {
-                        let terms = printed(flat_terms(std::slice::from_ref(e)));
-                        match rows_if_they_fit(&component(k), terms) {
-                            Ok(rows) => Component::Rows(rows),
-                            Err(terms) => Component::Terms(terms),
-                        }
+                    .map(|(k, terms)| match rows_if_they_fit(&component(k), terms) {
+                        Ok(rows) => Component::Rows(rows),
+                        Err(terms) => Component::Terms(terms),
                     })
                     .collect(),
             )
