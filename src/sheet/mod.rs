@@ -168,6 +168,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             || tidied.as_ref(),
             |frame| of_frame(&programs, frame),
             || full.then(|| agreement(der, expanded_ne)),
+            &Head::new(der),
         );
     }
     // Decided once, by whichever thread asks first (an arm of up to four joints reads its
@@ -212,6 +213,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         std::mem::forget(failed);
         let _ = proved.set(Some(text));
     };
+    let head = &Head::new(der);
     let helper = || {
         // While this thread derives the expanded D that decides whether a small robot's sheet is
         // compact (nearly never), the helper derives the Newton–Euler recursion of the inertial
@@ -238,6 +240,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
                 t.take_all();
             }
         }
+        head.help();
     };
     let proofs = || {
         full.then(|| {
@@ -260,7 +263,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         }
     };
     crate::parallel::pool::scope(crate::parallel::threads() - 1, &helper, || {
-        document(der, opts, is_compact, tidied, program, proofs)
+        document(der, opts, is_compact, tidied, program, proofs, head)
     })
     .0
 }
@@ -286,6 +289,7 @@ fn document<'t>(
     tidied: impl Fn() -> Option<&'t newton_euler::Tidied<'t>>,
     programs: impl Fn(Frame) -> &'t CompactProgram,
     proofs: impl FnOnce() -> Option<String>,
+    head: &Head,
 ) -> String {
     let mut lay = Layout::new();
     // The equations' sides, tidied once for every section that prints them.
@@ -308,7 +312,13 @@ fn document<'t>(
             (true, scope) => lagrange_compact::section(der, &mut lay, scope == Scope::Brief),
         });
     }
-    for frame in opts.frames() {
+    let frames = opts.frames();
+    for (k, &frame) in frames.iter().enumerate() {
+        if k + 1 == frames.len() {
+            // Everything before the last section, for a helper done with its own work to
+            // abbreviate while this thread writes the rest.
+            head.offer(std::mem::take(&mut out));
+        }
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, programs(frame), &mut lay)
         } else {
@@ -323,7 +333,9 @@ fn document<'t>(
         ),
     }
     out.push_str("\\end{document}\n");
-    let (mut out, abbreviated) = abbreviate_trig(&out, der);
+    let (mut whole, head_abbreviated) = head.abbreviated(out.len());
+    let abbreviated = abbreviate_trig_into(&out, der, &mut whole) | head_abbreviated;
+    let mut out = whole;
     let notation = if abbreviated {
         "We write $s_{i} = \\sin q_{i}$, $c_{i} = \\cos q_{i}$, and for sums of joint angles \
          $s_{ij} = \\sin(q_i + q_j)$, $c_{ij} = \\cos(q_i + q_j)$, $s_{ijk} = \\sin(q_i + q_j + q_k)$, \
@@ -338,10 +350,93 @@ fn document<'t>(
     out
 }
 
-/// The sheet with `\sin`/`\cos` of a joint angle or of a plain sum of joint angles written as the
-/// book abbreviates them, `s_{1}`, `c_{23}` (powers kept: `s_{2}^{2}`), and whether anything was
-/// abbreviated. Left as they are when a scene symbol would read the same (a parameter `s1`).
+/// The head of a sheet's text (everything before its last Newton–Euler section), handed over once
+/// written so that a helper done with its own work abbreviates it ([`abbreviate_trig_into`] rewrites
+/// each function where it stands, and the head ends between two sections, so the head and the
+/// rest abbreviate apart as they would together) while the layout writes the rest. Whoever asks
+/// first abbreviates it; the layout, at the end, if no helper did.
+struct Head<'d> {
+    der: &'d Derivation,
+    /// The head as written, once offered (taken by whoever abbreviates it).
+    written: std::sync::Mutex<Option<String>>,
+    /// Set once a thread took the head to abbreviate it; its result, when done.
+    claimed: std::sync::atomic::AtomicBool,
+    done: crate::parallel::Shared<std::sync::Mutex<Option<(String, bool)>>>,
+}
+
+impl<'d> Head<'d> {
+    /// A head not written yet.
+    fn new(der: &'d Derivation) -> Head<'d> {
+        Head {
+            der,
+            written: std::sync::Mutex::new(None),
+            claimed: std::sync::atomic::AtomicBool::new(false),
+            done: crate::parallel::Shared::new(),
+        }
+    }
+
+    /// The head, written.
+    fn offer(&self, text: String) {
+        *crate::parallel::lock::lock(&self.written) = Some(text);
+    }
+
+    /// Abbreviates the head if it is written and no thread took it yet: for a helper with nothing
+    /// else to do. Written with room for as much again after it (the rest of a sheet is shorter
+    /// than its head), so that the rest is abbreviated straight after it.
+    fn help(&self) {
+        if crate::parallel::lock::lock(&self.written).is_some() {
+            self.abbreviate(0);
+        }
+    }
+
+    /// Abbreviates the head if no thread took it yet, with room for `rest` more bytes.
+    fn abbreviate(&self, rest: usize) {
+        use std::sync::atomic::Ordering;
+        if self.claimed.swap(true, Ordering::AcqRel) {
+            return;
+        }
+        // Set to nothing if abbreviating panics, so that the layout does not wait for ever.
+        struct Failed<'a>(&'a crate::parallel::Shared<std::sync::Mutex<Option<(String, bool)>>>);
+        impl Drop for Failed<'_> {
+            fn drop(&mut self) {
+                let _ = self.0.set(std::sync::Mutex::new(None));
+            }
+        }
+        let failed = Failed(&self.done);
+        let text = crate::parallel::lock::lock(&self.written)
+            .take()
+            .unwrap_or_default();
+        let room = if rest > 0 { rest } else { text.len() };
+        let mut out = String::with_capacity(text.len() + room);
+        let any = abbreviate_trig_into(&text, self.der, &mut out);
+        std::mem::forget(failed);
+        let _ = self.done.set(std::sync::Mutex::new(Some((out, any))));
+    }
+
+    /// The head abbreviated (empty if none was written), with room for `rest` more bytes when
+    /// abbreviated here, and whether anything was: here, unless a helper did or does it (then
+    /// waited for). Once.
+    fn abbreviated(&self, rest: usize) -> (String, bool) {
+        self.abbreviate(rest);
+        crate::parallel::lock::lock(self.done.wait())
+            .take()
+            .expect("the head is abbreviated, and taken once")
+    }
+}
+
+/// [`abbreviate_trig_into`] a string of its own.
+#[cfg(test)]
 fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
+    let mut out = String::with_capacity(latex.len());
+    let any = abbreviate_trig_into(latex, der, &mut out);
+    (out, any)
+}
+
+/// The sheet's text `latex` written at the end of `out` with `\sin`/`\cos` of a joint angle or of a
+/// plain sum of joint angles written as the book abbreviates them, `s_{1}`, `c_{23}` (powers kept:
+/// `s_{2}^{2}`), and whether anything was abbreviated. Left as they are when a scene symbol would
+/// read the same (a parameter `s1`).
+fn abbreviate_trig_into(latex: &str, der: &Derivation, out: &mut String) -> bool {
     let clash = crate::numeric::robot_parameters(der.robot())
         .iter()
         .any(|s| {
@@ -350,14 +445,14 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
             matches!(c.next(), Some('s' | 'c')) && c.all(|ch| ch.is_ascii_digit() || ch == '_')
         });
     if clash {
-        return (latex.to_string(), false);
+        out.push_str(latex);
+        return false;
     }
     // One pass over the bytes: at each `\sin` or `\cos` that reads as a joint angle's, the text
     // since the last one is copied whole and the abbreviation written. Not `memchr::memmem`: its
     // first use asks the processor for its features (`cpuid`), which a virtual machine traps,
     // about 0.2 ms of the SCARA arm's sheet.
     let bytes = latex.as_bytes();
-    let mut out = String::with_capacity(latex.len());
     let mut copied = 0;
     let mut at = 0;
     let mut any = false;
@@ -366,7 +461,7 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
         match Trig::at(&latex[at..]) {
             Some(trig) => {
                 out.push_str(&latex[copied..at]);
-                trig.write(&mut out);
+                trig.write(out);
                 at += trig.used;
                 copied = at;
                 any = true;
@@ -375,7 +470,7 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
         }
     }
     out.push_str(&latex[copied..]);
-    (out, any)
+    any
 }
 
 /// A sine or cosine of joint angles as the book abbreviates it: `\sin^{2} q_{3}` is `s_{3}^{2}`,
@@ -627,5 +722,36 @@ mod tests {
             .expect("valid");
             assert_eq!(abbreviate_trig(latex, &der).0, want, "{latex}");
         }
+    }
+
+    /// A head handed over is abbreviated once, by a helper or at the end, and the rest written
+    /// after it gives the text abbreviated whole; with no head, the rest alone.
+    #[test]
+    fn a_head_abbreviated_apart_and_the_rest_make_the_whole() {
+        let der = Derivation::new(
+            crate::parse::parse_scene(crate::parse::BUILTIN_PPP)
+                .expect("built in")
+                .robot,
+        )
+        .expect("valid");
+        let head = "a \\cos q_{1} + \\sin\\left(q_{1}+q_{2}\\right)\n";
+        let rest = "b \\sin^{2} q_{3}\n";
+        let whole = abbreviate_trig(&format!("{head}{rest}"), &der);
+        assert!(whole.1 && whole.0.contains("s_{12}") && whole.0.contains("s_{3}^{2}"));
+        for helped in [false, true] {
+            let h = Head::new(&der);
+            h.help(); // Not offered yet: nothing to do.
+            h.offer(head.to_string());
+            if helped {
+                std::thread::scope(|s| {
+                    s.spawn(|| h.help());
+                });
+            }
+            let (mut out, any) = h.abbreviated(rest.len());
+            let any = abbreviate_trig_into(rest, &der, &mut out) | any;
+            assert_eq!((out, any), whole, "helped: {helped}");
+        }
+        let none = Head::new(&der).abbreviated(0);
+        assert_eq!(none, (String::new(), false));
     }
 }
