@@ -112,10 +112,12 @@ impl Class {
         else {
             return Some(None);
         };
-        let Kind::Num(content) = factors[0].kind() else {
-            unreachable!("the factors of a group start with its content")
-        };
-        factors[0] = Expr::num(content * &self.scale);
+        if !self.scale.is_one() {
+            let Kind::Num(content) = factors[0].kind() else {
+                unreachable!("the factors of a group start with its content")
+            };
+            factors[0] = Expr::num(content * &self.scale);
+        }
         if let Some((id, k)) = self.lead {
             factors.push(
                 atom::to_expr(id)
@@ -197,10 +199,17 @@ fn classes(p: &Poly) -> Option<Vec<Class>> {
                 // The quotient's terms sorted again: the monomials' own order is by atom id, which
                 // dividing by a parameter may change.
                 terms.sort_unstable_by(|x, y| x.0.cmp(&y.0));
+                // Scaled by `1/s` (nothing to do for 1, a negation for −1: the common cases).
                 let scale = terms[0].1.clone();
-                let over = scale.recip().expect("a term's coefficient is not zero");
-                for (_, c) in &mut terms {
-                    *c = &*c * &over;
+                if scale.is_minus_one() {
+                    for (_, c) in &mut terms {
+                        *c = -&*c;
+                    }
+                } else if !scale.is_one() {
+                    let over = scale.recip().expect("a term's coefficient is not zero");
+                    for (_, c) in &mut terms {
+                        *c = &*c * &over;
+                    }
                 }
                 Class {
                     lead,
