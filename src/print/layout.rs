@@ -220,8 +220,11 @@ fn printed(terms: Vec<Expr>) -> Vec<Printed> {
 }
 
 /// The [`width`] of printed terms joined on one line ([`fill_lines`]): theirs, and two units for
-/// each `+` put between them (a `-` is a term's own).
+/// each `+` put between them (a `-` is a term's own); of none, `0`'s.
 fn line_width(terms: &[Printed]) -> usize {
+    if terms.is_empty() {
+        return 1;
+    }
     let plus = terms
         .iter()
         .skip(1)
@@ -359,6 +362,11 @@ impl PreparedVector {
             .iter()
             .map(|e| printed(flat_terms(std::slice::from_ref(e))))
             .collect();
+        #[cfg(debug_assertions)]
+        for (t, e) in terms.iter().zip(&shown) {
+            let whole = width(&print::to_string(e, Style::Latex));
+            assert_eq!(line_width(t), whole, "a cell's width from its terms'");
+        }
         let fits = beside <= BUDGET && terms.iter().all(|t| line_width(t) <= BUDGET - beside);
         let layout = if fits {
             let cells: Vec<String> = terms
