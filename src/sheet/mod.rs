@@ -168,7 +168,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
             || tidied.as_ref(),
             |frame| of_frame(&programs, frame),
             || full.then(|| agreement(der, expanded_ne)),
-            &Head::new(der),
+            &Abbreviation::new(der),
         );
     }
     // Decided once, by whichever thread asks first (an arm of up to four joints reads its
@@ -213,7 +213,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         std::mem::forget(failed);
         let _ = proved.set(Some(text));
     };
-    let head = &Head::new(der);
+    let abbreviation = &Abbreviation::new(der);
     let helper = || {
         // While this thread derives the expanded D that decides whether a small robot's sheet is
         // compact (nearly never), the helper derives the Newton–Euler recursion of the inertial
@@ -240,7 +240,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
                 t.take_all();
             }
         }
-        head.help();
+        abbreviation.help();
     };
     let proofs = || {
         full.then(|| {
@@ -263,7 +263,7 @@ pub fn sheet(der: &Derivation, opts: &SheetOptions) -> String {
         }
     };
     crate::parallel::pool::scope(crate::parallel::threads() - 1, &helper, || {
-        document(der, opts, is_compact, tidied, program, proofs, head)
+        document(der, opts, is_compact, tidied, program, proofs, abbreviation)
     })
     .0
 }
@@ -281,7 +281,7 @@ fn of_frame<T>(programs: &[(Frame, T)], frame: Frame) -> &T {
 /// The sheet's text, with the display forms of the Newton–Euler vectors from `tidied` (waited for
 /// vector by vector, as they are laid out), the compact Newton–Euler programs from `programs`
 /// (asked for only when the sheet is compact), and the agreement section from `proofs` (called
-/// once, when it is due).
+/// once, when it is due), abbreviated piece by piece through `abbreviation`.
 fn document<'t>(
     der: &Derivation,
     opts: &SheetOptions,
@@ -289,7 +289,7 @@ fn document<'t>(
     tidied: impl Fn() -> Option<&'t newton_euler::Tidied<'t>>,
     programs: impl Fn(Frame) -> &'t CompactProgram,
     proofs: impl FnOnce() -> Option<String>,
-    head: &Head,
+    abbreviation: &Abbreviation,
 ) -> String {
     let mut lay = Layout::new();
     // The equations' sides, tidied once for every section that prints them.
@@ -313,16 +313,23 @@ fn document<'t>(
         });
     }
     let frames = opts.frames();
+    let _closing = Closing(abbreviation);
     for (k, &frame) in frames.iter().enumerate() {
-        if k + 1 == frames.len() {
-            // Everything before the last section, for a helper done with its own work to
-            // abbreviate while this thread writes the rest.
-            head.offer(std::mem::take(&mut out));
+        // Everything before the last section, then that section a link at a time, for a helper
+        // done with its own work to abbreviate while this thread writes the rest.
+        let last = k + 1 == frames.len();
+        if last {
+            abbreviation.offer(std::mem::take(&mut out));
         }
+        let mut flush = |text: &mut String| {
+            if last {
+                abbreviation.offer(std::mem::take(text));
+            }
+        };
         out.push_str(&if compact {
             newton_euler_compact::section(der, frame, programs(frame), &mut lay)
         } else {
-            newton_euler::section(der, frame, &mut lay, tidied(), &mut sides)
+            newton_euler::section(der, frame, &mut lay, tidied(), &mut sides, &mut flush)
         });
     }
     match proofs() {
@@ -333,9 +340,7 @@ fn document<'t>(
         ),
     }
     out.push_str("\\end{document}\n");
-    let (mut whole, head_abbreviated) = head.abbreviated(out.len());
-    let abbreviated = abbreviate_trig_into(&out, der, &mut whole) | head_abbreviated;
-    let mut out = whole;
+    let (mut out, abbreviated) = abbreviation.abbreviated(&out);
     let notation = if abbreviated {
         "We write $s_{i} = \\sin q_{i}$, $c_{i} = \\cos q_{i}$, and for sums of joint angles \
          $s_{ij} = \\sin(q_i + q_j)$, $c_{ij} = \\cos(q_i + q_j)$, $s_{ijk} = \\sin(q_i + q_j + q_k)$, \
@@ -350,77 +355,173 @@ fn document<'t>(
     out
 }
 
-/// The head of a sheet's text (everything before its last Newton–Euler section), handed over once
-/// written so that a helper done with its own work abbreviates it ([`abbreviate_trig_into`] rewrites
-/// each function where it stands, and the head ends between two sections, so the head and the
-/// rest abbreviate apart as they would together) while the layout writes the rest. Whoever asks
-/// first abbreviates it; the layout, at the end, if no helper did.
-struct Head<'d> {
+/// The sheet's text abbreviated ([`abbreviate_into`]) piece by piece as the layout hands it over:
+/// everything before the last Newton–Euler section, then that section a link at a time, so that a
+/// helper done with its own work abbreviates a piece while the layout writes the next. The pass
+/// rewrites each function where it stands and every piece ends between two displays, so the
+/// pieces abbreviate apart as they would together. One thread abbreviates at a time, the pieces in
+/// order; the layout, once it has written the last, closes the queue, abbreviates what no helper
+/// took, and the rest after it ([`Abbreviation::abbreviated`]).
+struct Abbreviation<'d> {
     der: &'d Derivation,
-    /// The head as written, once offered (taken by whoever abbreviates it).
-    written: std::sync::Mutex<Option<String>>,
-    /// Set once a thread took the head to abbreviate it; its result, when done.
-    claimed: std::sync::atomic::AtomicBool,
-    done: crate::parallel::Shared<std::sync::Mutex<Option<(String, bool)>>>,
+    /// Whether a scene symbol reads as an abbreviation (then nothing is abbreviated): found once.
+    clash: std::sync::OnceLock<bool>,
+    queue: std::sync::Mutex<Queue>,
+    /// Signalled when a piece is offered or abbreviated, and when the queue closes.
+    changed: std::sync::Condvar,
 }
 
-impl<'d> Head<'d> {
-    /// A head not written yet.
-    fn new(der: &'d Derivation) -> Head<'d> {
-        Head {
+/// The pieces of an [`Abbreviation`].
+#[derive(Default)]
+struct Queue {
+    /// Whether the layout offered anything yet (a helper that comes earlier leaves at once).
+    opened: bool,
+    /// Offered and not taken yet, in order.
+    pending: std::collections::VecDeque<String>,
+    /// The pieces abbreviated so far, in order, and whether anything was abbreviated.
+    done: String,
+    any: bool,
+    /// Whether a thread is abbreviating the piece it took last.
+    busy: bool,
+    /// Whether the layout has offered its last piece.
+    closed: bool,
+    /// Whether a thread panicked while abbreviating (then the layout panics too, never waits).
+    failed: bool,
+}
+
+impl<'d> Abbreviation<'d> {
+    /// A queue with nothing offered yet.
+    fn new(der: &'d Derivation) -> Abbreviation<'d> {
+        Abbreviation {
             der,
-            written: std::sync::Mutex::new(None),
-            claimed: std::sync::atomic::AtomicBool::new(false),
-            done: crate::parallel::Shared::new(),
+            clash: std::sync::OnceLock::new(),
+            queue: std::sync::Mutex::new(Queue::default()),
+            changed: std::sync::Condvar::new(),
         }
     }
 
-    /// The head, written.
+    fn lock(&self) -> std::sync::MutexGuard<'_, Queue> {
+        crate::parallel::lock::lock(&self.queue)
+    }
+
+    /// The next piece of the text, written.
     fn offer(&self, text: String) {
-        *crate::parallel::lock::lock(&self.written) = Some(text);
-    }
-
-    /// Abbreviates the head if it is written and no thread took it yet: for a helper with nothing
-    /// else to do. Written with room for as much again after it (the rest of a sheet is shorter
-    /// than its head), so that the rest is abbreviated straight after it.
-    fn help(&self) {
-        if crate::parallel::lock::lock(&self.written).is_some() {
-            self.abbreviate(0);
+        let mut q = self.lock();
+        q.opened = true;
+        if !text.is_empty() {
+            q.pending.push_back(text);
         }
+        drop(q);
+        self.changed.notify_all();
     }
 
-    /// Abbreviates the head if no thread took it yet, with room for `rest` more bytes.
-    fn abbreviate(&self, rest: usize) {
-        use std::sync::atomic::Ordering;
-        if self.claimed.swap(true, Ordering::AcqRel) {
+    /// No piece comes after the ones offered (also when the layout unwinds: see [`Closing`]).
+    fn close(&self) {
+        self.lock().closed = true;
+        self.changed.notify_all();
+    }
+
+    /// Abbreviates the pieces as they are offered, until the queue closes: for a helper with
+    /// nothing else to do. Leaves at once if nothing was offered yet.
+    fn help(&self) {
+        let mut q = self.lock();
+        if !q.opened {
             return;
         }
-        // Set to nothing if abbreviating panics, so that the layout does not wait for ever.
-        struct Failed<'a>(&'a crate::parallel::Shared<std::sync::Mutex<Option<(String, bool)>>>);
-        impl Drop for Failed<'_> {
-            fn drop(&mut self) {
-                let _ = self.0.set(std::sync::Mutex::new(None));
+        loop {
+            if q.failed || (q.closed && q.pending.is_empty()) {
+                return;
             }
+            q = match self.take(q) {
+                Ok(q) => q,
+                Err(q) => self.changed.wait(q).unwrap_or_else(|p| p.into_inner()),
+            };
         }
-        let failed = Failed(&self.done);
-        let text = crate::parallel::lock::lock(&self.written)
-            .take()
-            .unwrap_or_default();
-        let room = if rest > 0 { rest } else { text.len() };
-        let mut out = String::with_capacity(text.len() + room);
-        let any = abbreviate_trig_into(&text, self.der, &mut out);
-        std::mem::forget(failed);
-        let _ = self.done.set(std::sync::Mutex::new(Some((out, any))));
     }
 
-    /// The head abbreviated (empty if none was written), with room for `rest` more bytes when
-    /// abbreviated here, and whether anything was: here, unless a helper did or does it (then
-    /// waited for). Once.
-    fn abbreviated(&self, rest: usize) -> (String, bool) {
-        self.abbreviate(rest);
-        crate::parallel::lock::lock(self.done.wait())
-            .take()
-            .expect("the head is abbreviated, and taken once")
+    /// Abbreviates the next piece, if there is one and no thread is abbreviating: taken with the
+    /// pieces done so far (no other thread touches them meanwhile), the lock released while this
+    /// thread writes; the queue locked again after (`Err` with the lock as it was if there was
+    /// nothing to take).
+    fn take<'q>(
+        &'q self,
+        mut q: std::sync::MutexGuard<'q, Queue>,
+    ) -> Result<std::sync::MutexGuard<'q, Queue>, std::sync::MutexGuard<'q, Queue>> {
+        if q.busy {
+            return Err(q);
+        }
+        let Some(piece) = q.pending.pop_front() else {
+            return Err(q);
+        };
+        q.busy = true;
+        let mut done = std::mem::take(&mut q.done);
+        drop(q);
+        /// Marks the queue failed if abbreviating panics, so that no thread waits for ever.
+        struct Failed<'a, 'd>(&'a Abbreviation<'d>);
+        impl Drop for Failed<'_, '_> {
+            fn drop(&mut self) {
+                let mut q = self.0.lock();
+                q.failed = true;
+                q.busy = false;
+                drop(q);
+                self.0.changed.notify_all();
+            }
+        }
+        let failed = Failed(self);
+        if done.is_empty() {
+            // Room for as much again: the rest of a sheet is shorter than its head.
+            done.reserve(2 * piece.len());
+        }
+        let any = self.abbreviate_into(&piece, &mut done);
+        std::mem::forget(failed);
+        let mut q = self.lock();
+        q.done = done;
+        q.any |= any;
+        q.busy = false;
+        self.changed.notify_all();
+        Ok(q)
+    }
+
+    /// [`abbreviate_into`] unless the scene's symbols clash with the abbreviations (then `text`
+    /// as it is).
+    fn abbreviate_into(&self, text: &str, out: &mut String) -> bool {
+        if *self.clash.get_or_init(|| names_clash(self.der)) {
+            out.push_str(text);
+            false
+        } else {
+            abbreviate_into(text, out)
+        }
+    }
+
+    /// The pieces abbreviated (empty if none was offered), then `rest` (the text after the last
+    /// piece): the queue closed, the pieces no helper took abbreviated here, and whether anything
+    /// was abbreviated. Once.
+    fn abbreviated(&self, rest: &str) -> (String, bool) {
+        self.close();
+        let mut q = self.lock();
+        let mut q = loop {
+            assert!(!q.failed, "abbreviating the sheet's text panicked");
+            q = match self.take(q) {
+                Ok(q) => q,
+                Err(q) if q.busy => self.changed.wait(q).unwrap_or_else(|p| p.into_inner()),
+                Err(q) => break q,
+            };
+        };
+        let mut out = std::mem::take(&mut q.done);
+        let mut any = q.any;
+        drop(q);
+        any |= self.abbreviate_into(rest, &mut out);
+        (out, any)
+    }
+}
+
+/// Closes an [`Abbreviation`]'s queue when dropped: a layout that unwinds leaves no helper
+/// waiting for it.
+struct Closing<'a, 'd>(&'a Abbreviation<'d>);
+
+impl Drop for Closing<'_, '_> {
+    fn drop(&mut self) {
+        self.0.close();
     }
 }
 
@@ -435,19 +536,30 @@ fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
 /// The sheet's text `latex` written at the end of `out` with `\sin`/`\cos` of a joint angle or of a
 /// plain sum of joint angles written as the book abbreviates them, `s_{1}`, `c_{23}` (powers kept:
 /// `s_{2}^{2}`), and whether anything was abbreviated. Left as they are when a scene symbol would
-/// read the same (a parameter `s1`).
+/// read the same (a parameter `s1`, [`names_clash`]).
+#[cfg(test)]
 fn abbreviate_trig_into(latex: &str, der: &Derivation, out: &mut String) -> bool {
-    let clash = crate::numeric::robot_parameters(der.robot())
+    if names_clash(der) {
+        out.push_str(latex);
+        return false;
+    }
+    abbreviate_into(latex, out)
+}
+
+/// Whether a symbol of the scene reads as an abbreviation of the sheet (`s1`, `c_23`): then the
+/// sheet abbreviates nothing.
+fn names_clash(der: &Derivation) -> bool {
+    crate::numeric::robot_parameters(der.robot())
         .iter()
         .any(|s| {
             let n = s.ascii_name();
             let mut c = n.chars();
             matches!(c.next(), Some('s' | 'c')) && c.all(|ch| ch.is_ascii_digit() || ch == '_')
-        });
-    if clash {
-        out.push_str(latex);
-        return false;
-    }
+        })
+}
+
+/// [`abbreviate_trig_into`] for a scene whose symbols do not clash with the abbreviations.
+fn abbreviate_into(latex: &str, out: &mut String) -> bool {
     // One pass over the bytes: at each `\sin` or `\cos` that reads as a joint angle's, the text
     // since the last one is copied whole and the abbreviation written. Not `memchr::memmem`: its
     // first use asks the processor for its features (`cpuid`), which a virtual machine traps,
@@ -724,34 +836,57 @@ mod tests {
         }
     }
 
-    /// A head handed over is abbreviated once, by a helper or at the end, and the rest written
-    /// after it gives the text abbreviated whole; with no head, the rest alone.
+    /// Pieces handed over are abbreviated once each, in order, by a helper or at the end, and the
+    /// rest after them gives the text abbreviated whole: with no helper, with one that comes before
+    /// anything is offered (it leaves at once), and with one that takes the pieces as they come
+    /// (offered while it waits, some after it started); with no piece, the rest alone; and a
+    /// scene whose symbols read as abbreviations gets its text as it is.
     #[test]
-    fn a_head_abbreviated_apart_and_the_rest_make_the_whole() {
+    fn pieces_abbreviated_apart_and_the_rest_make_the_whole() {
         let der = Derivation::new(
             crate::parse::parse_scene(crate::parse::BUILTIN_PPP)
                 .expect("built in")
                 .robot,
         )
         .expect("valid");
-        let head = "a \\cos q_{1} + \\sin\\left(q_{1}+q_{2}\\right)\n";
+        let pieces = [
+            "a \\cos q_{1} + \\sin\\left(q_{1}+q_{2}\\right)\n",
+            "",
+            "\\[ x = \\cos^{2} q_{2} \\]\n",
+            "no function here\n",
+            "\\sin q_{1} \\cos\\left(q_{1}-q_{3}\\right)\n",
+        ];
         let rest = "b \\sin^{2} q_{3}\n";
-        let whole = abbreviate_trig(&format!("{head}{rest}"), &der);
+        let whole = abbreviate_trig(&format!("{}{rest}", pieces.concat()), &der);
         assert!(whole.1 && whole.0.contains("s_{12}") && whole.0.contains("s_{3}^{2}"));
         for helped in [false, true] {
-            let h = Head::new(&der);
-            h.help(); // Not offered yet: nothing to do.
-            h.offer(head.to_string());
-            if helped {
-                std::thread::scope(|s| {
+            let h = Abbreviation::new(&der);
+            h.help(); // Nothing offered yet: leaves at once.
+            let got = std::thread::scope(|s| {
+                h.offer(pieces[0].to_string());
+                if helped {
                     s.spawn(|| h.help());
-                });
-            }
-            let (mut out, any) = h.abbreviated(rest.len());
-            let any = abbreviate_trig_into(rest, &der, &mut out) | any;
-            assert_eq!((out, any), whole, "helped: {helped}");
+                }
+                for p in &pieces[1..] {
+                    h.offer(p.to_string());
+                }
+                h.abbreviated(rest)
+            });
+            assert_eq!(got, whole, "helped: {helped}");
         }
-        let none = Head::new(&der).abbreviated(0);
-        assert_eq!(none, (String::new(), false));
+        let none = Abbreviation::new(&der).abbreviated(rest);
+        assert_eq!(none, abbreviate_trig(rest, &der));
+        // A parameter named like an abbreviation: nothing is abbreviated.
+        let clash = Derivation::new(
+            crate::parse::parse_scene(
+                "robot \"clash\"\ndh standard\njoint 1 revolute a=s1 alpha=0 d=0 theta=q1\nlink 1 mass=m1 com=[0,0,0]\n",
+            )
+            .expect("a scene")
+            .robot,
+        )
+        .expect("valid");
+        let h = Abbreviation::new(&clash);
+        h.offer(pieces[0].to_string());
+        assert_eq!(h.abbreviated(rest), (format!("{}{rest}", pieces[0]), false));
     }
 }

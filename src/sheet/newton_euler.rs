@@ -297,13 +297,15 @@ fn moment_formula(convention: Convention) -> &'static str {
     }
 }
 
-/// The section for `frame`.
+/// The section for `frame`, its text handed to `flush` after each link of both recursions and
+/// before the equations (the text so far, taken or left; the rest is returned).
 pub(super) fn section(
     der: &Derivation,
     frame: Frame,
     lay: &mut Layout,
     tidied: Option<&Tidied>,
     sides: &mut super::lagrange::Sides,
+    flush: &mut dyn FnMut(&mut String),
 ) -> String {
     let robot = der.robot();
     let n = robot.dof();
@@ -379,6 +381,7 @@ pub(super) fn section(
             ));
             out.push_str(&vector(lay, tidied, frame, "a_{c,L}", a));
         }
+        flush(&mut out);
     }
     out.push_str(&format!(
         "\\subsection*{{Backward recursion}}\nStart with $f_{{{}}} = 0$ and $n_{{{}}} = 0$. Then \
@@ -405,6 +408,7 @@ pub(super) fn section(
                 "The torque $n_{{{k}}}$ is not needed: only prismatic joints precede link {k}.\n"
             )),
         }
+        flush(&mut out);
     }
     // The axis of joint i: z_{i-1} in standard DH, z_i in modified DH.
     let axis = match (frame, robot.convention) {
@@ -466,6 +470,7 @@ pub(super) fn section(
             ));
         }
     }
+    flush(&mut out);
     out.push_str(&super::lagrange::equations(
         der,
         &ne.tau,
