@@ -366,9 +366,9 @@ struct Abbreviation<'d> {
     der: &'d Derivation,
     /// Whether a scene symbol reads as an abbreviation (then nothing is abbreviated): found once.
     clash: std::sync::OnceLock<bool>,
+    /// Waited on by yielding and looking again, never by sleeping: a thread woken by another is
+    /// put on the waker's core here ([`crate::parallel::Shared`]).
     queue: std::sync::Mutex<Queue>,
-    /// Signalled when a piece is offered or abbreviated, and when the queue closes.
-    changed: std::sync::Condvar,
 }
 
 /// The pieces of an [`Abbreviation`].
@@ -396,12 +396,22 @@ impl<'d> Abbreviation<'d> {
             der,
             clash: std::sync::OnceLock::new(),
             queue: std::sync::Mutex::new(Queue::default()),
-            changed: std::sync::Condvar::new(),
         }
     }
 
     fn lock(&self) -> std::sync::MutexGuard<'_, Queue> {
         crate::parallel::lock::lock(&self.queue)
+    }
+
+    /// The queue locked again after this thread gave its core away once: a wait for a piece or
+    /// for the thread abbreviating one.
+    fn later<'q>(
+        &'q self,
+        q: std::sync::MutexGuard<'q, Queue>,
+    ) -> std::sync::MutexGuard<'q, Queue> {
+        drop(q);
+        std::thread::yield_now();
+        self.lock()
     }
 
     /// The next piece of the text, written.
@@ -411,14 +421,11 @@ impl<'d> Abbreviation<'d> {
         if !text.is_empty() {
             q.pending.push_back(text);
         }
-        drop(q);
-        self.changed.notify_all();
     }
 
     /// No piece comes after the ones offered (also when the layout unwinds: see [`Closing`]).
     fn close(&self) {
         self.lock().closed = true;
-        self.changed.notify_all();
     }
 
     /// Abbreviates the pieces as they are offered, until the queue closes: for a helper with
@@ -434,7 +441,7 @@ impl<'d> Abbreviation<'d> {
             }
             q = match self.take(q) {
                 Ok(q) => q,
-                Err(q) => self.changed.wait(q).unwrap_or_else(|p| p.into_inner()),
+                Err(q) => self.later(q),
             };
         }
     }
@@ -463,8 +470,6 @@ impl<'d> Abbreviation<'d> {
                 let mut q = self.0.lock();
                 q.failed = true;
                 q.busy = false;
-                drop(q);
-                self.0.changed.notify_all();
             }
         }
         let failed = Failed(self);
@@ -478,7 +483,6 @@ impl<'d> Abbreviation<'d> {
         q.done = done;
         q.any |= any;
         q.busy = false;
-        self.changed.notify_all();
         Ok(q)
     }
 
@@ -503,7 +507,7 @@ impl<'d> Abbreviation<'d> {
             assert!(!q.failed, "abbreviating the sheet's text panicked");
             q = match self.take(q) {
                 Ok(q) => q,
-                Err(q) if q.busy => self.changed.wait(q).unwrap_or_else(|p| p.into_inner()),
+                Err(q) if q.busy => self.later(q),
                 Err(q) => break q,
             };
         };
