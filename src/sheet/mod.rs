@@ -315,11 +315,15 @@ fn document<'t>(
     let frames = opts.frames();
     let _closing = Closing(abbreviation);
     for (k, &frame) in frames.iter().enumerate() {
-        // Everything before the last section, then that section a link at a time, for a helper
-        // done with its own work to abbreviate while this thread writes the rest.
+        // Everything before the last section, then that section a link at a time (when it is
+        // the expanded one: a compact section is short), for a helper done with its own work to
+        // abbreviate while this thread writes the rest.
         let last = k + 1 == frames.len();
         if last {
             abbreviation.offer(std::mem::take(&mut out));
+            if compact {
+                abbreviation.close();
+            }
         }
         let mut flush = |text: &mut String| {
             if last {
