@@ -533,25 +533,13 @@ impl Drop for Closing<'_, '_> {
     }
 }
 
-/// [`abbreviate_trig_into`] a string of its own.
+/// The sheet's text `latex` with `\sin`/`\cos` of a joint angle or of a plain sum of joint angles
+/// written as the book abbreviates them, `s_{1}`, `c_{23}` (powers kept: `s_{2}^{2}`), and whether
+/// anything was abbreviated: [`Abbreviation`] with no piece handed over. Left as they are when a
+/// scene symbol would read the same (a parameter `s1`, [`names_clash`]).
 #[cfg(test)]
 fn abbreviate_trig(latex: &str, der: &Derivation) -> (String, bool) {
-    let mut out = String::with_capacity(latex.len());
-    let any = abbreviate_trig_into(latex, der, &mut out);
-    (out, any)
-}
-
-/// The sheet's text `latex` written at the end of `out` with `\sin`/`\cos` of a joint angle or of a
-/// plain sum of joint angles written as the book abbreviates them, `s_{1}`, `c_{23}` (powers kept:
-/// `s_{2}^{2}`), and whether anything was abbreviated. Left as they are when a scene symbol would
-/// read the same (a parameter `s1`, [`names_clash`]).
-#[cfg(test)]
-fn abbreviate_trig_into(latex: &str, der: &Derivation, out: &mut String) -> bool {
-    if names_clash(der) {
-        out.push_str(latex);
-        return false;
-    }
-    abbreviate_into(latex, out)
+    Abbreviation::new(der).abbreviated(latex)
 }
 
 /// Whether a symbol of the scene reads as an abbreviation of the sheet (`s1`, `c_23`): then the
@@ -566,7 +554,8 @@ fn names_clash(der: &Derivation) -> bool {
         })
 }
 
-/// [`abbreviate_trig_into`] for a scene whose symbols do not clash with the abbreviations.
+/// The abbreviations of `latex` written at the end of `out` (see [`Abbreviation`]), for a scene
+/// whose symbols do not clash with them ([`names_clash`]); whether anything was abbreviated.
 fn abbreviate_into(latex: &str, out: &mut String) -> bool {
     // One pass over the bytes: at each `\sin` or `\cos` that reads as a joint angle's, the text
     // since the last one is copied whole and the abbreviation written. Not `memchr::memmem`: its
