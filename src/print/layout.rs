@@ -9,6 +9,7 @@
 //! `^`, `_`) nothing. Subscripts count as full characters, so the estimate errs on the wide side.
 
 use crate::algebra::fast_hash::FxHasher;
+use crate::algebra::tidy::memo::Memo;
 use crate::algebra::tidy::{Grouping, Tidy};
 use crate::algebra::{Expr, Kind, Symbol};
 use crate::print::equation::{Body, Shown};
@@ -195,6 +196,29 @@ fn term_string(t: &Expr) -> String {
     print::sum_to_string(std::slice::from_ref(t), Style::Latex)
 }
 
+/// A term's [`term_string`] and its [`width`], remembered (when at most [`PRINTED_BYTES`] long):
+/// a sheet prints many terms more than once (the SCARA arm's 535 times 330 distinct terms: a
+/// link's Euler terms in the moment of every link before it, a vector's terms again in the sums
+/// the layout abbreviates).
+fn printed_term(t: &Expr) -> (String, usize) {
+    PRINTED.get_or_kept(
+        t,
+        |t| {
+            let s = term_string(t);
+            let w = width(&s);
+            (s, w)
+        },
+        |(s, _)| s.len() <= PRINTED_BYTES,
+    )
+}
+
+/// The terms [`printed_term`] has printed, shared by the threads that prepare vectors and the
+/// layout.
+static PRINTED: Memo<Expr, (String, usize)> = Memo::new();
+
+/// The longest text [`PRINTED`] keeps: its memory stays within a few megabytes.
+const PRINTED_BYTES: usize = 1024;
+
 /// A sum's terms as separate expressions, each with its coefficient; a non-sum is one term.
 fn flat_terms(terms: &[Expr]) -> Vec<Expr> {
     terms
@@ -212,8 +236,7 @@ fn printed(terms: Vec<Expr>) -> Vec<Printed> {
     terms
         .into_iter()
         .map(|t| {
-            let s = term_string(&t);
-            let w = width(&s);
+            let (s, w) = printed_term(&t);
             (t, s, w)
         })
         .collect()
@@ -990,8 +1013,7 @@ impl Layout {
         if new {
             later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
         }
-        let s = term_string(&shorter);
-        let w = width(&s);
+        let (s, w) = printed_term(&shorter);
         self.fitted.insert(key, (s.clone(), w));
         (s, w)
     }

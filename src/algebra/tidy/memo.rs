@@ -35,18 +35,41 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
         self.get_or_cow(Cow::Owned(key), f)
     }
 
+    /// [`Memo::get_or`] that remembers a computed value only if `keep` says so (a memo of texts
+    /// keeps the short ones, so that it never holds megabytes).
+    pub fn get_or_kept(
+        &self,
+        key: &K,
+        f: impl FnOnce(&K) -> V,
+        keep: impl FnOnce(&V) -> bool,
+    ) -> V {
+        if let Some(v) = self.lock().get(key) {
+            return v.clone();
+        }
+        let v = f(key);
+        if keep(&v) {
+            self.insert(key.clone(), v.clone());
+        }
+        v
+    }
+
     /// [`Memo::get_or`] of a key borrowed (cloned when remembered) or owned (kept).
     fn get_or_cow(&self, key: Cow<'_, K>, f: impl FnOnce(&K) -> V) -> V {
         if let Some(v) = self.lock().get(key.as_ref()) {
             return v.clone();
         }
         let v = f(key.as_ref());
+        self.insert(key.into_owned(), v.clone());
+        v
+    }
+
+    /// Remembers `v` for `key`, starting again when the memo is full.
+    fn insert(&self, key: K, v: V) {
         let mut map = self.lock();
         if map.len() >= Self::LIMIT {
             map.clear();
         }
-        map.insert(key.into_owned(), v.clone());
-        v
+        map.insert(key, v);
     }
 
     /// Forgets every entry ([`super::forget_memos`]).
@@ -92,6 +115,24 @@ mod tests {
         let before = calls.load(Ordering::Relaxed);
         assert_eq!(MEMO.get_or(&7, square), 49);
         assert_eq!(calls.load(Ordering::Relaxed), before + 1);
+    }
+
+    #[test]
+    fn a_memo_keeps_only_the_values_it_is_told_to() {
+        static MEMO: Memo<usize, String> = Memo::new();
+        let calls = AtomicUsize::new(0);
+        let text = |k: &usize| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            "x".repeat(*k)
+        };
+        let short = |s: &String| s.len() <= 3;
+        for _ in 0..2 {
+            assert_eq!(MEMO.get_or_kept(&2, text, short), "xx");
+            assert_eq!(MEMO.get_or_kept(&5, text, short), "xxxxx");
+        }
+        // The short text was computed once, the long one each time.
+        assert_eq!(calls.load(Ordering::Relaxed), 3);
+        assert!(MEMO.lock().contains_key(&2) && !MEMO.lock().contains_key(&5));
     }
 
     #[test]
