@@ -129,6 +129,11 @@ pub fn fmt_ratio(r: f64) -> String {
     }
 }
 
+/// A ratio to the hundredth, for one compared with a goal: `1.46`, `0.73`.
+pub fn fmt_hundredths(r: f64) -> String {
+    format!("{r:.2}")
+}
+
 fn opt(x: Option<u64>) -> String {
     x.map(|x| x.to_string()).unwrap_or_else(|| "–".into())
 }
@@ -295,10 +300,13 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
                 .filter(|r| r.status == Status::Ok)
                 .and_then(|r| r.seconds)
         };
-        let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
-            (Some(a), Some(b)) if b > 0.0 => fmt_ratio(a / b),
+        let ratio_with = |fmt: fn(f64) -> String, a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) if b > 0.0 => fmt(a / b),
             _ => "–".into(),
         };
+        let ratio = |a, b| ratio_with(fmt_ratio, a, b);
+        // The ratios the goal of 1.5× is about, to the hundredth: `1.46`, not `1.5`.
+        let to_goal = |a, b| ratio_with(fmt_hundredths, a, b);
         for (robot, n) in e2e_robots {
             let mut row = format!("| {robot} | {n} |");
             for m in cmds {
@@ -310,16 +318,16 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
                     st => st.name().to_string(),
                 })
                 .unwrap_or_else(|| "–".into());
-            let over = |m: &str| {
+            let over = |m: &str, ratio: &dyn Fn(Option<f64>, Option<f64>) -> String| {
                 ["text", "latex", "json"]
                     .map(|f| ratio(secs(&robot, &format!("e2e-derive-{f}")), secs(&robot, m)))
                     .join(" / ")
             };
             row.push_str(&format!(
                 " {} | {} | {} | {pages} |\n",
-                over("el"),
-                over("e2e-check"),
-                ratio(secs(&robot, "e2e-sheet"), secs(&robot, "e2e-check")),
+                over("el", &ratio),
+                over("e2e-check", &to_goal),
+                to_goal(secs(&robot, "e2e-sheet"), secs(&robot, "e2e-check")),
             ));
             s.push_str(&row);
         }
@@ -579,6 +587,8 @@ mod tests {
         assert_eq!(fmt_ratio(6.66), "6.7");
         assert_eq!(fmt_ratio(0.027), "0.027");
         assert_eq!(fmt_ratio(0.5), "0.50");
+        assert_eq!(fmt_hundredths(1.4541), "1.45");
+        assert_eq!(fmt_hundredths(0.726), "0.73");
     }
 
     #[test]
