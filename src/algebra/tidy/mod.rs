@@ -136,6 +136,7 @@ pub fn forget_memos() {
     group::DISPLAYED.clear();
     factor::FACTORED.clear();
     rates::GROUPED.clear();
+    rates::FORMS.clear();
     classes::QUOTIENTS.clear();
 }
 

@@ -322,6 +322,33 @@ fn finish(e: &Expr, out: Vec<Expr>, changed: bool) -> Expr {
 /// coefficient) as `k · inner`: the square of a linear form when it is one, else `k` times the
 /// sum of the rate monomials with integer coefficients ([`square`], [`linear`]).
 fn rate_form(pairs: &[(RateMonomial, Rational)], degree: i64) -> (Rational, Expr) {
+    // The form of the coefficients over the first one, remembered: `k` scales with them and the
+    // inner sum does not (every choice below is of ratios and signs relative to the first), and
+    // a few forms recur in most sums (`(q̇1 + q̇2)²`, `q̈1 + q̈2`).
+    let first = pairs[0].1.clone();
+    let over = first.recip().expect("a coefficient of a term is non-zero");
+    let key: Vec<(RateMonomial, Rational)> = pairs
+        .iter()
+        .map(|(r, c)| {
+            (
+                r.clone(),
+                if c == &first {
+                    Rational::one()
+                } else {
+                    c * &over
+                },
+            )
+        })
+        .collect();
+    let (k, inner) = FORMS.get_or_owned(key, |key| rate_form_of(key, degree));
+    (&k * &first, inner)
+}
+
+/// The forms [`rate_form`] has found, by the rates and coefficients over the first (the first 1).
+pub(super) static FORMS: Memo<Vec<(RateMonomial, Rational)>, (Rational, Expr)> = Memo::new();
+
+/// [`rate_form`] of the coefficients as they are.
+fn rate_form_of(pairs: &[(RateMonomial, Rational)], degree: i64) -> (Rational, Expr) {
     let square = (degree == 2).then(|| square(pairs)).flatten();
     match square {
         Some((k, form)) => (k, form.pow(2).expect("a non-zero form")),
@@ -519,6 +546,60 @@ mod tests {
             out.push(e);
         }
         out
+    }
+
+    /// The remembered form of a group of rates is the form of its coefficients as they are: the
+    /// memo's key divides them by the first, and `k` scales back while the inner sum stays (squares,
+    /// linear forms, either sign, fractions).
+    #[test]
+    fn a_remembered_rate_form_is_the_form_of_the_coefficients_as_they_are() {
+        let q = |i: u32| ((1u8, i), 1i64);
+        let sq = |i: u32| ((1u8, i), 2i64);
+        let acc = |i: u32| ((2u8, i), 1i64);
+        let r = |n: i64, d: i64| Rational::new(n, d).expect("a non-zero denominator");
+        let groups: Vec<(Vec<(RateMonomial, Rational)>, i64)> = vec![
+            // (q̇1 + q̇2)²
+            (
+                vec![
+                    (vec![sq(1)], r(1, 1)),
+                    (vec![q(1), q(2)], r(2, 1)),
+                    (vec![sq(2)], r(1, 1)),
+                ],
+                2,
+            ),
+            // (q̇1 − 2 q̇3)²
+            (
+                vec![
+                    (vec![sq(1)], r(1, 1)),
+                    (vec![q(1), q(3)], r(-4, 1)),
+                    (vec![sq(3)], r(4, 1)),
+                ],
+                2,
+            ),
+            // 2 q̇1 q̇2 + q̇2²: not a square
+            (vec![(vec![q(1), q(2)], r(2, 1)), (vec![sq(2)], r(1, 1))], 2),
+            // q̈1 + q̈2 − q̈4
+            (
+                vec![
+                    (vec![acc(1)], r(1, 1)),
+                    (vec![acc(2)], r(1, 1)),
+                    (vec![acc(4)], r(-1, 1)),
+                ],
+                1,
+            ),
+            // q̈1 / 3 + q̈2 / 2
+            (vec![(vec![acc(1)], r(1, 3)), (vec![acc(2)], r(1, 2))], 1),
+        ];
+        for (pairs, degree) in groups {
+            for scale in [r(1, 1), r(-1, 1), r(3, 1), r(-2, 7), r(5, 4)] {
+                let scaled: Vec<(RateMonomial, Rational)> =
+                    pairs.iter().map(|(m, c)| (m.clone(), c * &scale)).collect();
+                let direct = rate_form_of(&scaled, degree);
+                // Twice: computed, then from the memo.
+                assert_eq!(rate_form(&scaled, degree), direct, "{scaled:?}");
+                assert_eq!(rate_form(&scaled, degree), direct, "{scaled:?}");
+            }
+        }
     }
 
     /// The shortcut passes over only sums that the full path leaves as they are, and the full path
