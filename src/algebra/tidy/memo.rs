@@ -43,33 +43,33 @@ impl<K: Hash + Eq + Clone, V: Clone> Memo<K, V> {
         f: impl FnOnce(&K) -> V,
         keep: impl FnOnce(&V) -> bool,
     ) -> V {
-        if let Some(v) = self.lock().get(key) {
-            return v.clone();
-        }
-        let v = f(key);
-        if keep(&v) {
-            self.insert(key.clone(), v.clone());
-        }
-        v
+        self.get_or_cow_kept(Cow::Borrowed(key), f, keep)
     }
 
     /// [`Memo::get_or`] of a key borrowed (cloned when remembered) or owned (kept).
     fn get_or_cow(&self, key: Cow<'_, K>, f: impl FnOnce(&K) -> V) -> V {
+        self.get_or_cow_kept(key, f, |_| true)
+    }
+
+    /// [`Memo::get_or_cow`], the value remembered only if `keep` says so.
+    fn get_or_cow_kept(
+        &self,
+        key: Cow<'_, K>,
+        f: impl FnOnce(&K) -> V,
+        keep: impl FnOnce(&V) -> bool,
+    ) -> V {
         if let Some(v) = self.lock().get(key.as_ref()) {
             return v.clone();
         }
         let v = f(key.as_ref());
-        self.insert(key.into_owned(), v.clone());
-        v
-    }
-
-    /// Remembers `v` for `key`, starting again when the memo is full.
-    fn insert(&self, key: K, v: V) {
-        let mut map = self.lock();
-        if map.len() >= Self::LIMIT {
-            map.clear();
+        if keep(&v) {
+            let mut map = self.lock();
+            if map.len() >= Self::LIMIT {
+                map.clear();
+            }
+            map.insert(key.into_owned(), v.clone());
         }
-        map.insert(key, v);
+        v
     }
 
     /// Forgets every entry ([`super::forget_memos`]).
