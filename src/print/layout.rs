@@ -1013,7 +1013,10 @@ impl Layout {
         if new {
             later.push((print::to_string(&symbol, Style::Latex), sum.clone()));
         }
-        let (s, w) = printed_term(&shorter);
+        // Not through `printed_term`: `fitted` already remembers this term fitted, and `shorter`
+        // (with its new abbreviation) is met nowhere else.
+        let s = term_string(&shorter);
+        let w = width(&s);
         self.fitted.insert(key, (s.clone(), w));
         (s, w)
     }
