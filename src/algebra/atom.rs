@@ -275,21 +275,23 @@ pub fn lookup(id: AtomId) -> Atom {
     crate::parallel::lock::read(&INTERNER).atoms[(id & SERIAL) as usize].clone()
 }
 
-/// The atoms' expressions made so far: a polynomial turned back into an expression, or ranked for
-/// display ([`super::poly::Poly::to_expr`], the tidying of a sheet's vectors), asks for the same few
-/// atoms' expressions thousands of times.
-static EXPRS: LazyLock<RwLock<FxHashMap<AtomId, Expr>>> = LazyLock::new(RwLock::default);
+thread_local! {
+    /// The atoms' expressions this thread made: a polynomial turned back into an expression, or
+    /// ranked for display ([`super::poly::Poly::to_expr`], the tidying of a sheet's vectors), asks
+    /// for the same few atoms' expressions thousands of times. Each thread keeps its own, without
+    /// a lock: shared, the lock's word and the reference counts of the expressions, taken and
+    /// cloned that often by two threads at once, passed between their cores at every use.
+    static EXPRS: std::cell::RefCell<FxHashMap<AtomId, Expr>> = std::cell::RefCell::new(FxHashMap::default());
+}
 
 /// The atom as a canonical expression.
 pub fn to_expr(id: AtomId) -> Expr {
-    if let Some(e) = crate::parallel::lock::read(&EXPRS).get(&id) {
-        return e.clone();
+    if let Some(e) = EXPRS.with_borrow(|made| made.get(&id).cloned()) {
+        return e;
     }
+    // Made outside the borrow: making an expression may ask for other atoms' expressions.
     let e = make_expr(id);
-    crate::parallel::lock::write(&EXPRS)
-        .entry(id)
-        .or_insert(e)
-        .clone()
+    EXPRS.with_borrow_mut(|made| made.entry(id).or_insert(e).clone())
 }
 
 /// [`to_expr`], made.
@@ -346,6 +348,35 @@ mod tests {
         assert_eq!(distinct([&[(m, 3), (m, 1)][..]]).0, vec![m]);
         assert_eq!(distinct(lists).0, want);
         assert_eq!(distinct(std::iter::empty()), (vec![], 0));
+    }
+
+    /// Each thread makes its own atoms' expressions ([`to_expr`]): on every thread an atom's is
+    /// its canonical expression, also for atoms interned on another thread, and asked again.
+    #[test]
+    fn every_thread_gets_each_atoms_own_expression() {
+        let q = Symbol::q(5);
+        let p = Symbol::new("l_atom_test");
+        let ids = [sym(&q), sin(&q), cos(&q), sym(&p), pi()];
+        let want = [
+            Expr::sym(q.clone()),
+            Expr::sin(&Expr::sym(q.clone())),
+            Expr::cos(&Expr::sym(q.clone())),
+            Expr::sym(p.clone()),
+            Expr::pi(),
+        ];
+        let made_here: Vec<Expr> = ids.iter().map(|&id| to_expr(id)).collect();
+        assert_eq!(made_here, want);
+        std::thread::scope(|s| {
+            for _ in 0..2 {
+                s.spawn(|| {
+                    for _ in 0..2 {
+                        let there: Vec<Expr> = ids.iter().map(|&id| to_expr(id)).collect();
+                        assert_eq!(there, want);
+                    }
+                });
+            }
+        });
+        assert_eq!(ids.iter().map(|&id| to_expr(id)).collect::<Vec<_>>(), want);
     }
 
     #[test]
