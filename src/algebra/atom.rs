@@ -249,7 +249,8 @@ pub fn distinct<'a>(lists: impl IntoIterator<Item = &'a [(AtomId, i32)]>) -> (Ve
         if seen.len() < len {
             seen.resize(len, false);
         }
-        let mut out: Vec<AtomId> = Vec::new();
+        // A few dozen, as a rule.
+        let mut out: Vec<AtomId> = Vec::with_capacity(32);
         for list in lists {
             for &(id, _) in list {
                 let s = dense_index(id);

@@ -399,7 +399,8 @@ impl Expr {
         let mut constant = Rational::zero();
         // Every (term, coefficient), then sorted by term and merged: the same as adding them one by
         // one into an ordered map, at a fraction of the cost.
-        let mut all: Vec<(Expr, Rational)> = Vec::new();
+        let items = items.into_iter();
+        let mut all: Vec<(Expr, Rational)> = Vec::with_capacity(items.size_hint().0);
         for item in items {
             match item.kind() {
                 Kind::Num(r) => constant += r,

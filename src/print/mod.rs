@@ -223,7 +223,8 @@ impl Product {
         let mut p = Product {
             coeff: coeff.abs(),
             numeric: vec![],
-            up: vec![],
+            // Nearly always every factor.
+            up: Vec::with_capacity(factors.len()),
             down: vec![],
         };
         for (base, exp) in factors {

@@ -157,29 +157,47 @@ fn classes(p: &Poly) -> Option<Vec<Class>> {
     // by its leading factor, which is the first of its factors in the canonical order (no base
     // here orders before a parameter). So the quotient's terms keep their canonical order, and
     // every pass pairs and merges them as it would the class's.
-    let mut by_lead: Vec<(Lead, Vec<(Mono, Rational)>)> = Vec::new();
-    for (m, c) in p.terms() {
-        // A monomial's factors are sorted by id, and a parameter's id comes first (its class is 0).
-        let lead = m
-            .factors()
-            .iter()
-            .take_while(|&&(id, _)| atom::class(id) == atom::Class::Param)
-            .map(|&(id, k)| {
-                let n = place
-                    .binary_search_by_key(&id, |&(a, _)| a)
-                    .map(|i| place[i].1)
-                    .expect("a parameter of the sum");
-                (n, (id, k))
-            })
-            .min_by_key(|&(n, _)| n)
-            .map(|(_, lead)| lead);
-        let terms = match by_lead.iter().position(|(l, _)| *l == lead) {
-            Some(i) => &mut by_lead[i].1,
-            None => {
-                by_lead.push((lead, Vec::new()));
-                &mut by_lead.last_mut().expect("just pushed").1
+    // Each term's class, and each class's lead and size (so that its terms are gathered in a
+    // vector of their number).
+    let mut leads: Vec<(Lead, usize)> = Vec::new();
+    let class_of: Vec<usize> = p
+        .terms()
+        .iter()
+        .map(|(m, _)| {
+            // A monomial's factors are sorted by id, and a parameter's id comes first (its class
+            // is 0).
+            let lead = m
+                .factors()
+                .iter()
+                .take_while(|&&(id, _)| atom::class(id) == atom::Class::Param)
+                .map(|&(id, k)| {
+                    let n = place
+                        .binary_search_by_key(&id, |&(a, _)| a)
+                        .map(|i| place[i].1)
+                        .expect("a parameter of the sum");
+                    (n, (id, k))
+                })
+                .min_by_key(|&(n, _)| n)
+                .map(|(_, lead)| lead);
+            match leads.iter().position(|(l, _)| *l == lead) {
+                Some(i) => {
+                    leads[i].1 += 1;
+                    i
+                }
+                None => {
+                    leads.push((lead, 1));
+                    leads.len() - 1
+                }
             }
-        };
+        })
+        .collect();
+    let mut by_lead: Vec<(Lead, Vec<(Mono, Rational)>)> = leads
+        .into_iter()
+        .map(|(lead, n)| (lead, Vec::with_capacity(n)))
+        .collect();
+    for ((m, c), &i) in p.terms().iter().zip(&class_of) {
+        let (lead, terms) = &mut by_lead[i];
+        let lead = *lead;
         let m = match lead {
             Some((id, _)) => Mono::from_sorted(
                 m.factors()
