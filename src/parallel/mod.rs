@@ -5,9 +5,11 @@
 //! by side. The derivation ([`crate::dynamics::lagrange`]: the Christoffel symbols, `τ`, `C`), the
 //! checks and the display layer ([`crate::print::parallel`]) share it. The calling thread always
 //! takes a share of the work; the others are the helper threads of [`pool`], started once and
-//! kept, and a value several threads wait for is a [`Shared`], waited for without sleeping (both
-//! for the same reason: a thread started or woken here ran on its waker's core for up to a
-//! millisecond, see [`pool`]).
+//! kept, and a value several threads wait for is a [`Shared`], waited for without being woken by
+//! another thread (both for the same reason: a thread started or woken here ran on its waker's
+//! core for up to a millisecond, see [`pool`]): by yielding, and past [`SPIN`] by napping
+//! ([`Waiting`]), so that a helper kept from its core by another process may run on the
+//! waiter's.
 //!
 //! What may run here must be pure. It may intern new atoms only where their ids order nothing that
 //! is printed or generated (see [`crate::algebra::atom`]): tidying and printing, which order
@@ -26,7 +28,7 @@ pub mod lock;
 pub mod pool;
 mod shared;
 
-pub use shared::{wait_for, Shared};
+pub use shared::{wait_for, Shared, Waiting, NAP, SPIN};
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};

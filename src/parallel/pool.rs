@@ -48,6 +48,8 @@ struct Helper {
 /// The helpers, idle ones in a list of their own.
 struct Pool {
     idle: Mutex<Vec<Arc<Helper>>>,
+    /// Every helper started, idle or not ([`release`]).
+    all: Mutex<Vec<Arc<Helper>>>,
     /// How many helpers were started.
     started: Mutex<usize>,
 }
@@ -59,6 +61,7 @@ fn pool() -> &'static Pool {
         placement::remember_cores();
         Pool {
             idle: Mutex::new(Vec::new()),
+            all: Mutex::new(Vec::new()),
             started: Mutex::new(0),
         }
     })
@@ -130,8 +133,9 @@ pub fn scope_open<R>(
     impl Drop for Close<'_> {
         fn drop(&mut self) {
             super::lock::lock(open()).retain(|j| !Arc::ptr_eq(j, self.0));
+            let mut waiting = super::Waiting::new();
             while self.0.running.load(Ordering::Acquire) > 0 {
-                std::thread::yield_now();
+                waiting.pause();
             }
         }
     }
@@ -190,12 +194,23 @@ fn take(n: usize) -> Vec<Arc<Helper>> {
         match start() {
             Some(h) => {
                 *started += 1;
+                lock(&pool().all).push(Arc::clone(&h));
                 got.push(h);
             }
             None => break,
         }
     }
     got
+}
+
+/// Allows every helper every core of the process again, for a thread about to leave its own core
+/// idle while it waits ([`super::Waiting`]): a helper held to the other cores, behind
+/// another process's time slice there, may then run on the waiter's. The next [`scope`] holds
+/// the helpers it lends work to away from its caller's core again.
+pub fn release() {
+    for h in lock(&pool().all).iter() {
+        placement::anywhere(h);
+    }
 }
 
 /// Starts a helper thread, waiting for work.

@@ -1,5 +1,5 @@
 //! Values computed once by whichever thread asks first, the others waiting for them without
-//! sleeping.
+//! being woken by the thread that computes them.
 //!
 //! A thread that sleeps until another thread's result is ready is woken by that thread, and the
 //! kernel here (a two-core virtual machine, measured) nearly always wakes it on the waker's core,
@@ -8,9 +8,23 @@
 //! layout waited for a vector or a derivation the other thread was computing. A thread waiting
 //! here yields its core instead ([`std::thread::yield_now`]) and looks again, so it is never
 //! asleep, and gives its core to whatever else wants it.
+//!
+//! Not for long, though ([`Waiting`]): a wait of more than [`SPIN`] means, as a rule, that the
+//! thread it waits for is not running: another process took its core (the helper is held to
+//! the cores other than its caller's while the caller does its share, [`super::pool`]). A
+//! thread that yields never leaves its own core idle, so the kernel never moves that helper
+//! onto it. So after [`SPIN`] the waiter allows every helper every core
+//! ([`super::pool::release`]) and naps, [`NAP`] at a time, woken by its own timer rather than by
+//! another thread: its core idles meanwhile and the kernel may run the helper there. With a
+//! busy loop of another process on the second core (four interleaved rounds of 20–40 runs),
+//! the SCARA arm's sheet took 10.7–11.7 ms before and 8.4–10.5 ms after, the all-symbolic PUMA
+//! 560's 37.6–42.8 ms before and 31.1–35.1 ms after; on an idle machine the same within the
+//! noise (a sheet's waits there are shorter than [`SPIN`], but for the proofs', which the
+//! waiter spends helping).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
+use std::time::{Duration, Instant};
 
 /// A [`OnceLock`] whose waiters yield instead of sleeping (see the module's doc).
 #[derive(Debug, Default)]
@@ -34,10 +48,11 @@ impl<T> Shared<T> {
         self.cell.get()
     }
 
-    /// The value, computed by `f` on this thread if no thread computes it yet; waits (yielding)
-    /// while another thread does. If that thread panics, a waiting one computes it instead.
+    /// The value, computed by `f` on this thread if no thread computes it yet; waits
+    /// ([`Waiting`]) while another thread does. If that thread panics, a waiting one computes it instead.
     pub fn get_or_init(&self, f: impl FnOnce() -> T) -> &T {
         let mut f = Some(f);
+        let mut waiting = Waiting::new();
         loop {
             if let Some(v) = self.cell.get() {
                 return v;
@@ -54,7 +69,7 @@ impl<T> Shared<T> {
                 let f = f.take().expect("claimed once by this call");
                 return self.cell.get_or_init(f);
             }
-            std::thread::yield_now();
+            waiting.pause();
         }
     }
 
@@ -68,7 +83,7 @@ impl<T> Shared<T> {
         set
     }
 
-    /// The value, waiting (yielding) until a thread sets or computes it.
+    /// The value, waiting ([`Waiting`]) until a thread sets or computes it.
     pub fn wait(&self) -> &T {
         wait_for(&self.cell)
     }
@@ -76,25 +91,77 @@ impl<T> Shared<T> {
     /// The value, once another thread has set it, this thread running open work meanwhile
     /// ([`super::pool::help`]): for a thread that holds nothing another may wait for.
     pub fn wait_helping(&self) -> &T {
+        let mut waiting = Waiting::new();
         loop {
             if let Some(v) = self.cell.get() {
                 return v;
             }
             // Open work whose items are all taken is still listed until its caller is done:
-            // joining it runs nothing, so this thread yields either way.
-            super::pool::help();
-            std::thread::yield_now();
+            // joining it runs nothing, so this thread pauses either way; after work it ran,
+            // the wait starts again (yielding first).
+            if super::pool::help() {
+                waiting = Waiting::new();
+            }
+            waiting.pause();
         }
     }
 }
 
-/// The value of `cell`, waiting (yielding, see the module's doc) until another thread sets it.
+/// The value of `cell`, waiting ([`Waiting`]) until another thread sets it.
 pub fn wait_for<T>(cell: &OnceLock<T>) -> &T {
+    let mut waiting = Waiting::new();
     loop {
         if let Some(v) = cell.get() {
             return v;
         }
-        std::thread::yield_now();
+        waiting.pause();
+    }
+}
+
+/// How long a wait yields before it naps (see the module's doc): longer than nearly every wait
+/// of a sheet on an idle machine (the layout's for a vector: 42 µs on average, 0.35 ms at most).
+pub const SPIN: Duration = Duration::from_micros(200);
+
+/// One nap of a wait past [`SPIN`]: what a wait may last longer than needed (with the kernel's
+/// timer slack, 50 µs more).
+pub const NAP: Duration = Duration::from_micros(50);
+
+/// A wait for another thread, one [`Waiting::pause`] between looks: yielding until [`SPIN`] has
+/// passed, then napping [`NAP`] at a time, the helpers first allowed every core (module doc).
+#[derive(Debug, Default)]
+pub struct Waiting {
+    /// When the first pause was.
+    since: Option<Instant>,
+    /// Whether the helpers were released.
+    napping: bool,
+}
+
+impl Waiting {
+    /// A wait not started yet.
+    pub const fn new() -> Waiting {
+        Waiting {
+            since: None,
+            napping: false,
+        }
+    }
+
+    /// One pause before looking again.
+    pub fn pause(&mut self) {
+        if !self.napping {
+            let since = *self.since.get_or_insert_with(Instant::now);
+            if since.elapsed() < SPIN {
+                std::thread::yield_now();
+                return;
+            }
+            self.napping = true;
+            super::pool::release();
+        }
+        std::thread::sleep(NAP);
+    }
+
+    /// Whether this wait has napped.
+    pub fn napped(&self) -> bool {
+        self.napping
     }
 }
 
@@ -133,6 +200,24 @@ mod tests {
         assert!(first.is_err());
         assert_eq!(shared.get(), None);
         assert_eq!(*shared.get_or_init(|| 5), 5);
+    }
+
+    /// A wait yields while it is short and naps once it has lasted longer than `SPIN`.
+    #[test]
+    fn a_long_wait_naps() {
+        let start = Instant::now();
+        let mut waiting = Waiting::new();
+        let mut pauses = 0;
+        while start.elapsed() < 3 * SPIN {
+            waiting.pause();
+            pauses += 1;
+        }
+        assert!(waiting.napped(), "after {pauses} pauses");
+        let mut fresh = Waiting::new();
+        assert!(!fresh.napped());
+        fresh.pause();
+        // One pause naps only if this thread was held up for longer than `SPIN` meanwhile.
+        assert!(!fresh.napped() || fresh.since.is_some_and(|t| t.elapsed() >= SPIN));
     }
 
     #[test]
