@@ -158,8 +158,7 @@ fn every_example_is_proved() {
 
 #[test]
 fn scene_errors_and_warnings() {
-    let dir = std::env::temp_dir().join(format!("symdyn-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("cli");
     let bad = dir.join("bad.scene");
     std::fs::write(
         &bad,

@@ -1,6 +1,9 @@
 //! What a new user met first, through the real binary (issue 11, "found when tried as a new user
 //! would" and "the command line's rough edges"): each row is one of those findings, held fixed.
 
+mod common;
+
+use common::TempDir;
 use std::process::{Command, Stdio};
 
 /// Runs `symdyn args` in the crate's directory: stdout, stderr and the exit code.
@@ -95,8 +98,7 @@ fn a_closed_pipe_ends_quietly() {
 /// cannot be written is named with the operating system's reason.
 #[test]
 fn warnings_once_and_unwritable_files_named() {
-    let dir = std::env::temp_dir().join(format!("symdyn-new-user-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = TempDir::new("new-user");
     let warn = dir.join("warn.scene");
     std::fs::write(
         &warn,
@@ -159,21 +161,13 @@ fn higher_derivatives_read_back() {
     }
 }
 
-/// Writes `text` as `name` in a fresh directory of the test and returns its path.
-fn scene_file(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("symdyn-new-user-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_str().unwrap().to_string()
-}
-
 /// In a scene a field's value ends at a space outside brackets: `theta=q1 extra` is an error that
 /// says how to write the product, where it used to be read silently as `q1*extra`; operators with
 /// spaces, brackets and `*` are fine, and every example scene still reads.
 #[test]
 fn a_field_value_ends_at_a_space() {
-    let bad = scene_file(
+    let dir = TempDir::new("new-user");
+    let bad = dir.file(
         "extra.scene",
         "joint 1 revolute a=0 alpha=0 d=0 theta=q1 extra\nlink 1 mass=m1\n",
     );
@@ -184,7 +178,7 @@ fn a_field_value_ends_at_a_space() {
         "{err}"
     );
     assert!(err.contains("`theta=q1*extra`"), "{err}");
-    let good = scene_file(
+    let good = dir.file(
         "spaces.scene",
         "joint 1 revolute a=2*l1 alpha=0 d=0 theta=q1 + pi/2\nlink 1 mass=m1*k com=[l1 k, 0, 0]\n",
     );
@@ -212,7 +206,8 @@ fn a_field_value_ends_at_a_space() {
 /// inequality broken), a robot without mass; a negative mass is refused.
 #[test]
 fn physics_mistakes_are_said_with_their_fix() {
-    let odd = scene_file(
+    let dir = TempDir::new("new-user");
+    let odd = dir.file(
         "odd.scene",
         "joint 1 revolute a=1 alpha=90 d=0 theta=q1\n\
          joint 2 revolute a=1 alpha=0 d=0 theta=q2\n\
@@ -237,7 +232,7 @@ fn physics_mistakes_are_said_with_their_fix() {
         "{json}"
     );
 
-    let empty = scene_file(
+    let empty = dir.file(
         "empty.scene",
         "gravity [0, 0, -g]\njoint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=0\n",
     );
@@ -248,7 +243,7 @@ fn physics_mistakes_are_said_with_their_fix() {
         "{err}"
     );
 
-    let skew = scene_file(
+    let skew = dir.file(
         "skew.scene",
         "gravity [0, 0, -g]\njoint 1 revolute a=0 alpha=0 d=0 theta=q1\n\
          link 1 mass=1 inertia=[[1, 1/2, 0], [0, 1, 0], [0, 0, 1]]\n",
@@ -257,7 +252,7 @@ fn physics_mistakes_are_said_with_their_fix() {
     assert_eq!(code, 1);
     assert!(err.contains("skew.scene:3:23: the inertia matrix is not symmetric: entry (1, 2) is `1/2` but entry (2, 1) is `0`"), "{err}");
 
-    let negative = scene_file(
+    let negative = dir.file(
         "negative.scene",
         "gravity [0, 0, -g]\njoint 1 prismatic a=0 alpha=0 d=q1 theta=0\nlink 1 mass=-2\n",
     );
@@ -283,6 +278,7 @@ link 3 mass=m3 com=[lc3-l3,0,0] inertia=diag(I3x,I3y,I3z)
 /// nalgebra Newton–Euler at random states. An irrational or symbolic rate is refused with the fix.
 #[test]
 fn fractional_joint_rates_are_exact() {
+    let dir = TempDir::new("new-user");
     use std::collections::HashMap;
     use symdyn::algebra::Symbol;
     use symdyn::dynamics::check::check;
@@ -316,7 +312,7 @@ fn fractional_joint_rates_are_exact() {
             );
         }
     }
-    let (out, err, code) = symdyn(&["check", &scene_file("fractional.scene", FRACTIONAL)]);
+    let (out, err, code) = symdyn(&["check", &dir.file("fractional.scene", FRACTIONAL)]);
     assert_eq!(code, 0, "{out}{err}");
     assert_eq!(out.matches("proved [exact]:").count(), 4, "{out}");
     let (out, _, _) = symdyn(&[
@@ -330,7 +326,7 @@ fn fractional_joint_rates_are_exact() {
         ("1000*q1", "at the rate 1000: sin and cos of that multiple"),
     ] {
         let scene = FRACTIONAL.replace("theta=0.5*q1", &format!("theta={rate}"));
-        let (_, err, code) = symdyn(&["check", &scene_file("rate.scene", &scene)]);
+        let (_, err, code) = symdyn(&["check", &dir.file("rate.scene", &scene)]);
         assert_eq!(code, 1, "{rate}");
         assert!(
             err.contains(says) && err.contains("rate.scene:2:"),
@@ -422,6 +418,7 @@ fn python_with_sympy() -> Option<std::path::PathBuf> {
 /// result is the equation symdyn derived.
 #[test]
 fn readme_reads_json_with_sympy_unsafe_names() {
+    let dir = TempDir::new("new-user");
     let readme =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
     let after = &readme[readme
@@ -429,7 +426,7 @@ fn readme_reads_json_with_sympy_unsafe_names() {
         .expect("the section")..];
     let start = after.find("```python\n").expect("a python block") + "```python\n".len();
     let snippet = &after[start..start + after[start..].find("```").expect("its end")];
-    let scene = scene_file(
+    let scene = dir.file(
         "unsafe.scene",
         "gravity [0, -E, 0]\njoint 1 revolute a=0 alpha=0 d=0 theta=q1\n\
          link 1 mass=lambda com=[gamma, 0, 0] inertia=diag(0, 0, I)\n",
@@ -439,9 +436,9 @@ fn readme_reads_json_with_sympy_unsafe_names() {
     let Some(python) = python_with_sympy() else {
         return;
     };
-    let dir = std::path::Path::new(&scene).parent().unwrap().join("sympy");
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("robot.json"), json).unwrap();
+    let sympy_dir = dir.join("sympy");
+    std::fs::create_dir_all(&sympy_dir).unwrap();
+    std::fs::write(sympy_dir.join("robot.json"), json).unwrap();
     let check = "\nfrom sympy import Symbol, cos, simplify\n\
         lam, gam, E, I = (Symbol(n) for n in ('lambda', 'gamma', 'E', 'I'))\n\
         q1, qdd1 = Symbol('q1'), Symbol('qdd1')\n\
@@ -451,7 +448,7 @@ fn readme_reads_json_with_sympy_unsafe_names() {
     let out = Command::new(python)
         .arg("-c")
         .arg(format!("{snippet}{check}"))
-        .current_dir(&dir)
+        .current_dir(&sympy_dir)
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);

@@ -10,6 +10,8 @@
 //! environment `target/bench-venv` (which `.ci/run` and `symdyn bench --peers` create). Without one the
 //! test says so and passes outside CI; in CI (`CI` set) a missing peer fails it.
 
+mod common;
+
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::Command;
@@ -71,8 +73,7 @@ fn peer_d_g(
     params: &HashMap<Symbol, f64>,
     q: &[f64],
 ) -> (Vec<f64>, Vec<f64>) {
-    let dir = std::env::temp_dir().join(format!("symdyn-peers-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("peers");
     let robot_file = dir.join(format!("{engine}-robot.json"));
     std::fs::write(&robot_file, robot_json(robot)).unwrap();
     let mut values = serde_json::Map::new();

@@ -3,6 +3,8 @@
 //! input an error naming the element and its line (and a non-zero exit through the binary, never a
 //! panic), and every command that takes a scene taking a URDF file, told apart by its content.
 
+mod common;
+
 use std::collections::HashMap;
 use std::process::Command;
 use symdyn::algebra::{Expr, Rational, Symbol};
@@ -366,8 +368,7 @@ fn bad_input_names_the_element_and_its_line() {
         assert!(got.contains('^'), "a caret: {got}");
     }
     // Through the binary: the message, a non-zero exit, no panic.
-    let dir = std::env::temp_dir().join(format!("symdyn-urdf-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("urdf");
     for (k, (text, want)) in cases.iter().enumerate() {
         let path = dir.join(format!("bad{k}.txt"));
         std::fs::write(&path, text).unwrap();
@@ -388,8 +389,7 @@ fn every_command_takes_a_urdf_file_by_its_content() {
     assert!(is_urdf("\u{feff}<robot name=\"x\"/>"));
     assert!(!is_urdf("# a scene\njoint 1 revolute origin"));
     // Content decides, not the extension.
-    let dir = std::env::temp_dir().join(format!("symdyn-urdf-cmds-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("urdf-cmds");
     let path = dir.join("merged.robot");
     std::fs::write(&path, MERGED).unwrap();
     let p = path.to_str().unwrap();

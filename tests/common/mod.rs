@@ -48,3 +48,44 @@ pub fn symdyn(args: &[&str]) -> std::process::Output {
         .output()
         .expect("symdyn runs")
 }
+
+/// A fresh directory for one test under the system's temporary directory
+/// (`symdyn-<tag>-<process>-<n>`), removed with everything in it when dropped, also when the test
+/// fails: test runs leave nothing behind, and tests running at once never share one.
+#[allow(dead_code)]
+pub struct TempDir(std::path::PathBuf);
+
+#[allow(dead_code)]
+impl TempDir {
+    /// Creates the directory.
+    pub fn new(tag: &str) -> TempDir {
+        static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let path = std::env::temp_dir().join(format!("symdyn-{tag}-{}-{n}", std::process::id()));
+        std::fs::create_dir_all(&path).expect("the temporary directory can be created");
+        TempDir(path)
+    }
+
+    /// The directory.
+    pub fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+
+    /// The path of `name` in the directory.
+    pub fn join(&self, name: impl AsRef<std::path::Path>) -> std::path::PathBuf {
+        self.0.join(name)
+    }
+
+    /// Writes `text` as `name` in the directory; its path.
+    pub fn file(&self, name: &str, text: &str) -> String {
+        let path = self.join(name);
+        std::fs::write(&path, text).expect("the test file can be written");
+        path.to_str().expect("a UTF-8 path").to_string()
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
