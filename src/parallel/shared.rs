@@ -26,7 +26,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-/// A [`OnceLock`] whose waiters yield instead of sleeping (see the module's doc).
+/// A [`OnceLock`] whose waiters yield, then nap, instead of sleeping until the thread that sets it
+/// wakes them ([`Waiting`], see the module's doc).
 #[derive(Debug, Default)]
 pub struct Shared<T> {
     cell: OnceLock<T>,
