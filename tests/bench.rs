@@ -191,6 +191,21 @@ fn quick_bench_writes_consistent_results() {
             assert!(r[5].parse::<u64>().unwrap() >= 3, "{r:?}");
         }
     }
+    // What else the machine did during each robot's rounds (Linux): a share of its CPU time.
+    if cfg!(target_os = "linux") {
+        for robot in ["ppp", "rpp"] {
+            let load = row(&rows, robot, "e2e-load");
+            assert_eq!(load[3], "ok", "{load:?}");
+            // The note holds a comma: quoted in the CSV.
+            let note = load[11].trim_matches('"');
+            let (others, rest) = note.split_once("% other processes, ").expect(note);
+            let steal = rest.strip_suffix("% steal").expect(note);
+            for share in [others, steal] {
+                let p: f64 = share.parse().expect(note);
+                assert!((0.0..=100.0).contains(&p), "{note}");
+            }
+        }
+    }
     // Identification: `regressor --base` on each example and on random 7-joint chains.
     for robot in ["ppp", "rpp", "random-7S0", "random-7M0"] {
         let r = rows
@@ -210,6 +225,7 @@ fn quick_bench_writes_consistent_results() {
         "| ppp | 3 |",
         "derive ÷ EL (text / LaTeX / JSON)",
         "derive ÷ check (text / LaTeX / JSON)",
+        "| other load |",
         "`symdyn --version`",
         "## Identification",
         "| random-7M0 | 7 |",

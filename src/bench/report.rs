@@ -292,9 +292,15 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
         s.push_str("both methods and proves their agreement, printing a few lines): the yardstick of the issue ");
         s.push_str("that set the goal of 1.5×, whose 75 ms for the all-symbolic PUMA 560 was 1.5 times `check`'s 50 ms then; ");
         s.push_str("`sheet ÷ check` the sheet over `symdyn check`. Pages: of the sheet ");
-        s.push_str("compiled by pdflatex, with the overfull boxes its log reports.\n\n");
-        s.push_str("| robot | n | derive (text) | derive (LaTeX) | derive (JSON) | derive --compact | check | sheet | derive ÷ EL (text / LaTeX / JSON) | derive ÷ check (text / LaTeX / JSON) | sheet ÷ check | sheet pages |\n");
-        s.push_str("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        s.push_str("compiled by pdflatex, with the overfull boxes its log reports. Other load: the share of ");
+        s.push_str("the machine's CPU time (every core) that other processes took while the robot's rounds ran, ");
+        s.push_str("and the share the hypervisor stole (Linux): the sheets and the large robots' `derive` work on ");
+        s.push_str("two threads, `check` mostly on one, so their ratios rise when the second core is busy (on two ");
+        s.push_str("cores with one of them taken, the SCARA arm's `sheet ÷ check` is 1.7–1.9× against 1.3–1.4× idle).\n\n");
+        s.push_str("| robot | n | derive (text) | derive (LaTeX) | derive (JSON) | derive --compact | check | sheet | derive ÷ EL (text / LaTeX / JSON) | derive ÷ check (text / LaTeX / JSON) | sheet ÷ check | sheet pages | other load |\n");
+        s.push_str(
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+        );
         let secs = |robot: &str, m: &str| {
             find(records, robot, m)
                 .filter(|r| r.status == Status::Ok)
@@ -323,8 +329,11 @@ pub fn markdown(machine: &Machine, records: &[Record], notes: &[String]) -> Stri
                     .map(|f| ratio(secs(&robot, &format!("e2e-derive-{f}")), secs(&robot, m)))
                     .join(" / ")
             };
+            let load = find(records, &robot, "e2e-load")
+                .map(|r| r.note.clone())
+                .unwrap_or_else(|| "–".into());
             row.push_str(&format!(
-                " {} | {} | {} | {pages} |\n",
+                " {} | {} | {} | {pages} | {load} |\n",
                 over("el", &ratio),
                 over("e2e-check", &to_goal),
                 to_goal(secs(&robot, "e2e-sheet"), secs(&robot, "e2e-check")),

@@ -347,8 +347,10 @@ impl Runner {
         runs: usize,
         budget: f64,
     ) -> Record {
-        let mut recs = self.end_to_end_rounds(robot, &[(method, args.to_vec())], runs, budget, 0.0);
-        recs.pop().expect("one record per command")
+        let recs = self.end_to_end_rounds(robot, &[(method, args.to_vec())], runs, budget, 0.0);
+        recs.into_iter()
+            .find(|r| r.method == method)
+            .expect("one record per command")
     }
 
     /// [`Runner::end_to_end`] of several commands `(method, ARGS)` taken in turn, a round at a time:
@@ -358,7 +360,8 @@ impl Runner {
     /// a handful of rounds left its median, and so its ratio to `check`, that far off.
     /// Each median then spans the same stretch of time as the others, so their ratios (`derive ÷
     /// check`, `sheet ÷ check`) hold on a machine whose speed drifts while it is measured. A
-    /// command that fails is not run again; its record says why.
+    /// command that fails is not run again; its record says why. After the commands' records, on
+    /// Linux, one of what else the machine did meanwhile (`e2e-load`, [`Load`]).
     fn end_to_end_rounds(
         &self,
         (robot, dof): (&str, usize),
@@ -375,6 +378,7 @@ impl Runner {
             .map(|(method, _)| Record::new(robot, dof, method, Status::Ok))
             .collect();
         let mut times: Vec<Vec<f64>> = vec![Vec::with_capacity(runs); commands.len()];
+        let load = Load::start();
         let started = Instant::now();
         for round in 0.. {
             let per_command = started.elapsed().as_secs_f64() / commands.len() as f64;
@@ -409,6 +413,7 @@ impl Runner {
                 }
             }
         }
+        let load = load.and_then(|l| l.finish());
         for (rec, times) in recs.iter_mut().zip(&mut times) {
             if rec.status != Status::Ok {
                 continue;
@@ -427,8 +432,103 @@ impl Runner {
                 }
             );
         }
+        if let Some((others, steal)) = load {
+            let mut rec = Record::new(robot, dof, "e2e-load", Status::Ok);
+            rec.note = format!(
+                "{} other processes, {} steal",
+                percent(others),
+                percent(steal)
+            );
+            recs.push(rec);
+        }
         recs
     }
+}
+
+/// A share as a whole percentage (`0%`, `12%`), below one percent to a tenth (`0.4%`).
+fn percent(share: f64) -> String {
+    let p = 100.0 * share;
+    if p < 1.0 && p > 0.0 {
+        format!("{p:.1}%")
+    } else {
+        format!("{p:.0}%")
+    }
+}
+
+/// What else the machine did while a robot's end-to-end rounds ran (Linux): the CPU time of
+/// every core (`/proc/stat`) less that of this process and the `symdyn` processes it ran and
+/// waited for (`getrusage`), and the time the hypervisor gave the virtual cores to others
+/// (steal). The sheets run on two threads, `check` mostly on one, so their ratio rises when
+/// another process holds the second core (1.7–1.9× on this two-core machine with one core busy,
+/// against 1.3–1.4× idle): the report shows the load beside the ratios it qualifies.
+struct Load {
+    /// `(busy, steal, all)` jiffies of every core together.
+    at: (u64, u64, u64),
+    /// The CPU seconds of this process and its children.
+    ours: f64,
+}
+
+impl Load {
+    /// The counters now; `None` where `/proc/stat` cannot be read (not Linux).
+    fn start() -> Option<Load> {
+        Some(Load {
+            at: proc_stat()?,
+            ours: cpu_seconds_of_this_process_and_children(),
+        })
+    }
+
+    /// Since [`Load::start`]: the share of the machine's CPU time (every core) that went to other
+    /// processes, and the share stolen by the hypervisor; `None` if too little time passed for the
+    /// kernel's counters (a hundredth of a second each) to say.
+    fn finish(self) -> Option<(f64, f64)> {
+        let (busy, steal, all) = proc_stat()?;
+        let ticks = all.checked_sub(self.at.2)?;
+        if ticks < 10 {
+            return None;
+        }
+        // SAFETY: `sysconf` only reads a system setting.
+        let hz = unsafe { libc::sysconf(libc::_SC_CLK_TCK) };
+        let hz = if hz > 0 { hz as f64 } else { 100.0 };
+        let busy = busy.saturating_sub(self.at.0) as f64 / hz;
+        let ours = cpu_seconds_of_this_process_and_children() - self.ours;
+        let all_seconds = ticks as f64 / hz;
+        let others = ((busy - ours) / all_seconds).clamp(0.0, 1.0);
+        let steal = steal.saturating_sub(self.at.1) as f64 / ticks as f64;
+        Some((others, steal))
+    }
+}
+
+/// The `cpu` line of `/proc/stat`: jiffies busy (user, nice, system, irq, softirq), stolen, and
+/// in all (those, idle and iowait), summed over every core.
+fn proc_stat() -> Option<(u64, u64, u64)> {
+    let text = std::fs::read_to_string("/proc/stat").ok()?;
+    let line = text.lines().find(|l| l.starts_with("cpu "))?;
+    let v: Vec<u64> = line
+        .split_whitespace()
+        .skip(1)
+        .take(8)
+        .map(|f| f.parse().ok())
+        .collect::<Option<_>>()?;
+    let [user, nice, system, idle, iowait, irq, softirq, steal] = v[..] else {
+        return None;
+    };
+    let busy = user + nice + system + irq + softirq;
+    Some((busy, steal, busy + idle + iowait + steal))
+}
+
+/// User and system CPU seconds of this process and of its children that were waited for.
+fn cpu_seconds_of_this_process_and_children() -> f64 {
+    let seconds = |who| {
+        // SAFETY: `getrusage` writes one `rusage` into the zeroed value.
+        let u = unsafe {
+            let mut u: libc::rusage = std::mem::zeroed();
+            libc::getrusage(who, &mut u);
+            u
+        };
+        let t = |tv: libc::timeval| tv.tv_sec as f64 + tv.tv_usec as f64 * 1e-6;
+        t(u.ru_utime) + t(u.ru_stime)
+    };
+    seconds(libc::RUSAGE_SELF) + seconds(libc::RUSAGE_CHILDREN)
 }
 
 /// The subdirectory of `--out` that holds what a run writes to measure: the generated scenes
