@@ -92,9 +92,7 @@ fn row<'a>(rows: &'a [Vec<String>], robot: &str, method: &str) -> &'a Vec<String
 #[test]
 fn quick_bench_writes_consistent_results() {
     let have_python = Command::new("python3").arg("--version").output().is_ok();
-    let tmp = std::env::temp_dir().join(format!("symdyn-bench-test-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
-    std::fs::create_dir_all(&tmp).unwrap();
+    let tmp = common::TempDir::new("bench-test");
     let stub = tmp.join("stub_peer.py");
     std::fs::write(&stub, STUB).unwrap();
     let out = tmp.join("out");
@@ -252,17 +250,16 @@ fn quick_bench_writes_consistent_results() {
         assert!(md.contains("SymEngine") && md.contains("×)"), "{md}");
         assert!(scaling.contains("SymPy"));
     }
-    let _ = std::fs::remove_dir_all(&tmp);
 }
 
 #[test]
 fn bench_says_when_there_is_no_python_and_goes_on() {
-    let tmp = std::env::temp_dir().join(format!("symdyn-bench-nopy-{}", std::process::id()));
+    let tmp = common::TempDir::new("bench-nopy");
     let o = symdyn(&[
         "bench",
         "--quick",
         "--out",
-        tmp.to_str().unwrap(),
+        tmp.path().to_str().unwrap(),
         "--examples",
         "none",
         "--max-joints",
@@ -276,14 +273,25 @@ fn bench_says_when_there_is_no_python_and_goes_on() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = std::fs::read_to_string(tmp.join("benchmarks.md")).unwrap();
     assert!(md.contains("peers skipped: the Python interpreter"), "{md}");
-    let bad = symdyn(&["bench", "--out", tmp.to_str().unwrap(), "--timeout", "0"]);
+    let bad = symdyn(&[
+        "bench",
+        "--out",
+        tmp.path().to_str().unwrap(),
+        "--timeout",
+        "0",
+    ]);
     assert_eq!(bad.status.code(), Some(1));
-    let bad = symdyn(&["bench", "--out", tmp.to_str().unwrap(), "--max-memory", "0"]);
+    let bad = symdyn(&[
+        "bench",
+        "--out",
+        tmp.path().to_str().unwrap(),
+        "--max-memory",
+        "0",
+    ]);
     assert_eq!(bad.status.code(), Some(1));
     assert!(
         String::from_utf8_lossy(&bad.stderr).contains("--max-memory must be a positive"),
         "{}",
         String::from_utf8_lossy(&bad.stderr)
     );
-    let _ = std::fs::remove_dir_all(&tmp);
 }

@@ -315,8 +315,7 @@ fn several_threads_print_what_one_prints() {
 /// limit for any scene, and the measurement never changes what a scene that fits prints.
 #[test]
 fn expansion_too_large_is_refused_with_advice() {
-    let dir = std::env::temp_dir().join(format!("symdyn-expand-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("expand");
     let chain = dir.join("chain-12.scene");
     std::fs::write(&chain, symdyn::chains::chain_scene(12)).unwrap();
     let (out, err, code) = symdyn(&["derive", chain.to_str().unwrap()]);
@@ -330,7 +329,6 @@ fn expansion_too_large_is_refused_with_advice() {
     let (out, err, code) = symdyn(&["derive", chain.to_str().unwrap(), "--compact"]);
     assert_eq!((code, err.as_str()), (0, ""));
     assert!(out.trim_end().ends_with("= tau12"), "{out}");
-    std::fs::remove_dir_all(&dir).ok();
 
     // A small robot is measured when a limit is given: the all-symbolic PUMA 560's d11 has more than
     // 50 terms (d11 = I1zz + … alone names a dozen parameters), fewer than 100000.

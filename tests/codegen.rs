@@ -10,7 +10,6 @@ mod common;
 use common::symdyn;
 
 use std::collections::{BTreeMap, HashMap};
-use std::path::PathBuf;
 use std::process::Command;
 use symdyn::algebra::atom::{self, AtomId, Class};
 use symdyn::algebra::compact::eval::eval;
@@ -202,11 +201,9 @@ fn close(got: f64, want: f64, scale: f64, what: &str) {
     );
 }
 
-fn tmpdir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("symdyn-codegen-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh directory for a test's files, removed when dropped ([`common::TempDir`]).
+fn tmpdir(tag: &str) -> common::TempDir {
+    common::TempDir::new(&format!("codegen-{tag}"))
 }
 
 fn tool(name: &str, args: &[&str]) -> bool {
@@ -495,7 +492,6 @@ fn check(robot: &Robot, set: &BTreeMap<Symbol, Expr>, what: &[What], tag: &str, 
             }
         }
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn all() -> Vec<What> {
@@ -630,7 +626,6 @@ fn bad_input_is_refused_and_nothing_is_half_written() {
     let m: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(m["functions"].as_array().map(Vec::len), Some(2));
     assert!(good.join("ppp_cartesian_manipulator.h").exists());
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The generated base regressor `Y` (issue 10's β): at random states `Y β = τ`, with `Y` and `τ` both
@@ -756,6 +751,5 @@ fn the_base_regressor_times_the_base_parameters_is_tau() {
                 "cc gen.c",
             );
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

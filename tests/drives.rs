@@ -141,8 +141,7 @@ fn the_compact_form_and_the_numeric_newton_euler_carry_the_drives() {
 #[test]
 fn bad_drive_fields_are_refused_at_their_place() {
     let base = scene("elbow_geared");
-    let dir = std::env::temp_dir().join(format!("symdyn-drives-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("drives");
     let cases = [
         (
             "gear=r1  rotor=Jm1  viscous=B1",
@@ -178,7 +177,6 @@ fn bad_drive_fields_are_refused_at_their_place() {
         let place = format!("bad{k}.scene:{line}:");
         assert!(err.contains(&place), "{to}: the error names {place}: {err}");
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -221,8 +219,7 @@ fn a_large_arm_with_friction_is_proved_at_random_points() {
         )
         .collect::<Vec<_>>()
         .join("\n");
-    let dir = std::env::temp_dir().join(format!("symdyn-drives-puma-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("drives-puma");
     let path = dir.join("puma_friction.scene");
     std::fs::write(&path, text).unwrap();
     let o = symdyn(&["check", path.to_str().unwrap()]);
@@ -235,5 +232,4 @@ fn a_large_arm_with_friction_is_proved_at_random_points() {
     );
     assert_eq!(out.matches("proved [randomized").count(), 3, "{out}");
     assert_eq!(out.matches("proved [").count(), 4, "{out}");
-    let _ = std::fs::remove_dir_all(&dir);
 }

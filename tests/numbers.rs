@@ -456,8 +456,7 @@ fn cli_text_and_json() {
 #[test]
 fn a_large_robot_is_evaluated_from_its_compact_form() {
     let n = 9;
-    let dir = std::env::temp_dir().join(format!("symdyn-eval-large-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("eval-large");
     let path = dir.join("chain-9.scene");
     std::fs::write(&path, symdyn::chains::chain_scene(n)).unwrap();
     let scene = path.to_str().unwrap();
@@ -526,11 +525,9 @@ fn a_large_robot_is_evaluated_from_its_compact_form() {
     assert_close(&d_qdd, &diff, 1e-9, "D q̈ = τ − τ(q̈ = 0)");
     let back = eval("qdd", &qd, &zero, &tau);
     assert_close(&back, &qdd, 1e-7, "q̈ from τ");
-    std::fs::remove_dir_all(&dir).ok();
 
     // Exact values need the expanded equations: the 12-joint chain is refused before expanding.
     let path = dir.join("chain-12.scene");
-    std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(&path, symdyn::chains::chain_scene(12)).unwrap();
     let (out, err, code) = symdyn(&[
         "eval",
@@ -543,5 +540,4 @@ fn a_large_robot_is_evaluated_from_its_compact_form() {
     ]);
     assert_eq!((code, out.as_str()), (1, ""));
     assert!(err.contains("--exact evaluates the expanded equations, but the expanded d11 of D(q) alone passes 300000 terms"), "{err}");
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -339,8 +339,7 @@ fn every_form_of_a_loaded_puma_agrees_with_the_numeric_newton_euler() {
 
 #[test]
 fn the_loaded_puma_passes_every_check() {
-    let dir = std::env::temp_dir().join(format!("symdyn-payload-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("payload");
     let path = dir.join("puma_payload.scene");
     std::fs::write(
         &path,
@@ -359,7 +358,6 @@ fn the_loaded_puma_passes_every_check() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert_eq!(out.matches("proved [").count(), 4, "{out}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -431,8 +429,7 @@ fn the_same_scene_answers_for_several_loads() {
 #[test]
 fn bad_payload_lines_are_refused_at_their_place() {
     let base = scene("elbow_payload");
-    let dir = std::env::temp_dir().join(format!("symdyn-payload-bad-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("payload-bad");
     let cases = [
         (
             "payload  mass=mL",
@@ -477,7 +474,6 @@ fn bad_payload_lines_are_refused_at_their_place() {
         let place = format!("bad{k}.scene:{line}:");
         assert!(err.contains(&place), "{to}: the error names {place}: {err}");
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

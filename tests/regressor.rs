@@ -16,6 +16,8 @@ use symdyn::identify::{
 use symdyn::parse::parse_scene;
 use symdyn::print::{poly::poly_to_string, Style};
 
+mod common;
+
 const EXAMPLES: &[&str] = &[
     "ppp",
     "elbow",
@@ -631,8 +633,7 @@ fn cli_regressor_and_identify() {
     assert!(out.contains("base parameters: 38 of 60"), "{out}");
     // identify: a CSV from the numeric PUMA, then bad files.
     let reg = Regressor::build(&example("puma560"), RegressorOptions::default()).unwrap();
-    let dir = std::env::temp_dir().join(format!("symdyn-identify-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("identify");
     let mut csv = String::from(
         "q1,q2,q3,q4,q5,q6,qd1,qd2,qd3,qd4,qd5,qd6,qdd1,qdd2,qdd3,qdd4,qdd5,qdd6,tau1,tau2,tau3,tau4,tau5,tau6\n",
     );
@@ -687,7 +688,6 @@ fn cli_regressor_and_identify() {
         err.contains("short.csv: 3 samples give 18 equations, fewer than the 36 base parameters"),
         "{err}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Robots placed joint by joint (`origin ... axis`, as URDF states them) get base parameters too. Their

@@ -156,9 +156,7 @@ fn abbreviations(tex: &str) -> Vec<(String, String)> {
 fn every_example_sheet_compiles_on_the_page() {
     let pdflatex = pdflatex();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir: PathBuf =
-        std::env::temp_dir().join(format!("symdyn-sheet-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temporary directory");
+    let dir = common::TempDir::new("sheet-test");
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(root.join("examples"))
         .expect("examples/")
         .map(|e| e.expect("entry").path())
@@ -219,7 +217,7 @@ fn every_example_sheet_compiles_on_the_page() {
         let Some(pdflatex) = pdflatex else {
             continue;
         };
-        let log = compile(pdflatex, &dir, &name, &tex);
+        let log = compile(pdflatex, dir.path(), &name, &tex);
         eprintln!(
             "{name}: {} bytes, derived and laid out in {:.1?}, pdflatex {:.1?}",
             tex.len(),
@@ -237,7 +235,6 @@ fn every_example_sheet_compiles_on_the_page() {
             problems.push(format!("{name}: {pages} pages, more than {limit}"));
         }
     }
-    let _ = std::fs::remove_dir_all(&dir);
     assert!(
         problems.is_empty(),
         "text off the page:\n{}",
@@ -334,18 +331,16 @@ fn derive_latex_breaks_long_equations() {
     let Some(pdflatex) = pdflatex() else {
         return;
     };
-    let dir = std::env::temp_dir().join(format!("symdyn-derive-latex-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("derive-latex");
     let mut problems = Vec::new();
     for (name, tex) in documents {
         let doc = format!(
             "\\documentclass[10pt]{{article}}\n\\usepackage[a4paper,margin=2cm]{{geometry}}\n\
              \\usepackage{{amsmath,amssymb}}\n\\allowdisplaybreaks\n\\begin{{document}}\n{tex}\\end{{document}}\n"
         );
-        let log = compile(pdflatex, &dir, &name, &doc);
+        let log = compile(pdflatex, dir.path(), &name, &doc);
         problems.extend(overfull(&log).into_iter().map(|l| format!("{name}: {l}")));
     }
-    let _ = std::fs::remove_dir_all(&dir);
     assert!(
         problems.is_empty(),
         "off the page:\n{}",

@@ -152,8 +152,7 @@ fn the_command_line_takes_a_side_file_for_every_command() {
 
 #[test]
 fn bad_side_files_are_refused_at_their_place() {
-    let dir = std::env::temp_dir().join(format!("symdyn-side-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("side");
     let cases = [
         (
             "drive 1 rotor=Jm1\njoint 2 revolute a=0 alpha=0 d=0 theta=q2",
@@ -243,5 +242,4 @@ fn bad_side_files_are_refused_at_their_place() {
         err.contains("the drive of joint 2 is stated twice"),
         "{err}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -238,8 +238,7 @@ fn a_singular_inertia_matrix_is_refused() {
 
 #[test]
 fn the_command_writes_csv_and_svg_and_refuses_bad_input() {
-    let dir = std::env::temp_dir().join(format!("symdyn-sim-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::TempDir::new("sim");
     let csv = dir.join("run.csv");
     let svg = dir.join("run.svg");
     let o = symdyn(&[
@@ -342,5 +341,4 @@ fn the_command_writes_csv_and_svg_and_refuses_bad_input() {
         assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
         assert!(err.contains(msg), "{args:?}: {err}");
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
