@@ -271,17 +271,12 @@ impl MassMatrix {
                 (&own.0, &own.1)
             }
         };
-        // One expander for every entry: the entries share their composite bodies' names, each
-        // expanded once.
-        let mut expander = arena.expander(usize::MAX);
-        let upper = (0..n)
-            .flat_map(|k| (k..n).map(move |j| (k, j)))
-            .map(|(k, j)| {
-                let entry = expander
-                    .expand(&d[k][j])
-                    .expect("no expansion passes an unbounded budget");
-                ((k, j), entry)
-            });
+        // Every entry at once: the entries share their composite bodies' names, each expanded
+        // once, on several threads for a large robot.
+        let places: Vec<(usize, usize)> =
+            (0..n).flat_map(|k| (k..n).map(move |j| (k, j))).collect();
+        let compact: Vec<&Poly> = places.iter().map(|&(k, j)| &d[k][j]).collect();
+        let upper = places.into_iter().zip(arena.expand_all(&compact));
         Self::mirrored(n, upper)
     }
 }
@@ -295,7 +290,8 @@ impl MassMatrix {
 /// the time: both give the same polynomials.
 ///
 /// Measured, whole `derive` processes on two threads (the Jacobian route shares its entries between
-/// them, the composite bodies run on one): the Franka Panda 21.7 → 18.1 ms (57 741 products), the
+/// them, the composite bodies then ran on one; their expansion is shared too now,
+/// [`Compact::expand_all`](crate::algebra::compact::Compact::expand_all)): the Franka Panda 21.7 → 18.1 ms (57 741 products), the
 /// UR5 10.1 → 9.6 (9 132, numeric), the numeric PUMA 560 7.3 → 6.9 (7 397); on one thread, a
 /// generic 6-joint chain 6.9 → 3.5 ms for `D` alone (61 160). Kept on the Jacobians: the all-symbolic
 /// PUMA 560 (17 786; 13.7 against 14.0 ms), a 5-joint chain (14 610; a tie on one thread) and the

@@ -22,7 +22,8 @@
 //! # What works on the compact form
 //! - [`calculus`]: `∂/∂x` and `d/dt` by the chain rule through the names, each derivative of a name
 //!   itself named once;
-//! - [`Expander`]: the expanded canonical form, name by name, within a size budget;
+//! - [`Expander`]: the expanded canonical form, name by name, within a size budget; with no budget,
+//!   many quantities at once on several threads ([`Compact::expand_all`]);
 //! - [`eval`]: values in `f64` or exact rationals, each name computed once;
 //! - [`identity`]: the proof that two quantities are equal, exact while they expand within a
 //!   budget, by exact evaluation at random rational points (Schwartz–Zippel) beyond it.
@@ -33,6 +34,7 @@
 pub mod calculus;
 pub mod degree;
 pub mod eval;
+mod expand_all;
 pub mod fraction;
 pub mod identity;
 
@@ -358,6 +360,36 @@ impl Compact {
         out
     }
 
+    /// `p` with every name (to a positive power) replaced by its expanded value, `value(k)` for
+    /// definition `k`, multiplied out: the expanded form of `p` given its names'.
+    pub fn substituted<'v>(&self, p: &Poly, value: impl Fn(usize) -> &'v Poly) -> Poly {
+        let mut parts = Vec::with_capacity(p.len());
+        for (m, c) in p.terms() {
+            let mut kept: Vec<(AtomId, i32)> = Vec::new();
+            let mut names: Vec<(&Poly, i32)> = Vec::new();
+            for &(id, e) in m.factors() {
+                match self.index_of(id) {
+                    Some(k) if e > 0 => names.push((value(k), e)),
+                    _ => kept.push((id, e)),
+                }
+            }
+            let mut prod = Poly::term(Mono::from_sorted(kept), c.clone());
+            for (v, e) in names {
+                prod = match e {
+                    1 => prod.mul(v),
+                    _ => prod.mul(&v.pow(e as u32)),
+                };
+            }
+            parts.push(prod);
+        }
+        // A definition that is one name times a monomial (the entries of `D` that are a composite
+        // body's) is its one product, not copied again by a sum.
+        match parts.len() {
+            1 => parts.pop().expect("one part"),
+            _ => Poly::sum(parts.iter()),
+        }
+    }
+
     /// An expander of this arena's quantities within `budget` terms per expanded value.
     pub fn expander(&self, budget: usize) -> Expander<'_> {
         Expander {
@@ -475,23 +507,7 @@ impl Expander<'_> {
         if !self.fits(p) {
             return None;
         }
-        let mut parts = Vec::with_capacity(p.len());
-        for (m, c) in p.terms() {
-            let mut kept: Vec<(AtomId, i32)> = Vec::new();
-            let mut names: Vec<(&Poly, i32)> = Vec::new();
-            for &(id, e) in m.factors() {
-                match self.arena.index_of(id) {
-                    Some(k) if e > 0 => names.push((&self.memo[&(k as u32)], e)),
-                    _ => kept.push((id, e)),
-                }
-            }
-            let mut prod = Poly::term(Mono::from_sorted(kept), c.clone());
-            for (v, e) in names {
-                prod = prod.mul(&v.pow(e as u32));
-            }
-            parts.push(prod);
-        }
-        Some(Poly::sum(parts.iter()))
+        Some(self.arena.substituted(p, |k| &self.memo[&(k as u32)]))
     }
 }
 
