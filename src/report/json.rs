@@ -593,6 +593,57 @@ mod tests {
     use super::*;
     use crate::parse::parse_scene;
 
+    /// Every atom of the Christoffel symbols is among `D`'s atoms and their partners
+    /// ([`symbol_atoms`], which the document ranks them by): on every example (a payload, geared
+    /// drives, both conventions, URDF input, numeric and symbolic parameters) and on random chains
+    /// of up to four joints.
+    #[test]
+    fn the_symbols_atoms_are_among_ds_and_their_partners() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
+        let mut robots: Vec<crate::dynamics::Robot> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                matches!(
+                    p.extension().and_then(|x| x.to_str()),
+                    Some("scene" | "urdf")
+                )
+            })
+            .map(|p| {
+                let text = std::fs::read_to_string(&p).unwrap();
+                crate::parse::parse_robot(&text, &Default::default())
+                    .unwrap_or_else(|e| panic!("{}: {e:?}", p.display()))
+                    .robot
+            })
+            .collect();
+        for n in 1..=4 {
+            for convention in [
+                crate::dynamics::Convention::Standard,
+                crate::dynamics::Convention::Modified,
+            ] {
+                robots.push(crate::chains::random_chain(n, convention, 11 * n as u64));
+            }
+        }
+        let mut checked = 0;
+        for robot in robots {
+            let name = robot.name.clone();
+            let der = Derivation::new(robot).unwrap();
+            let ranked: std::collections::HashSet<AtomId> = symbol_atoms(&der.mass_matrix().d)
+                .iter()
+                .map(|x| x[0].0)
+                .collect();
+            for c in der.christoffel().iter().flatten().flatten() {
+                for (m, _) in c.terms() {
+                    for &(id, _) in m.factors() {
+                        assert!(ranked.contains(&id), "{name}: {}", atom::to_expr(id));
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 100_000, "{checked} factors");
+    }
+
     /// The entries of `C` are printed from the Christoffel symbols, copying their printed terms:
     /// each large one is the text of the expanded entry, and the symbols' texts are theirs (the
     /// Stanford arm, whose symbols and `C` pass the tidy budget).
