@@ -721,7 +721,7 @@ pub fn nonzero_christoffel(christoffel: &Christoffel) -> Vec<(usize, usize, usiz
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::{Convention, Derivation};
+    use crate::dynamics::Derivation;
 
     /// `D` by composite rigid bodies, expanded, is the Jacobian route's `D` polynomial for
     /// polynomial (and the same `constant`), from a composite-body `D` of its own and from the
@@ -730,29 +730,7 @@ mod tests {
     /// route may be taken ([`by_composite_bodies`]); the derivation is the same.
     #[test]
     fn composite_bodies_give_the_jacobians_mass_matrix() {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
-        let mut robots: Vec<Robot> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| {
-                matches!(
-                    p.extension().and_then(|x| x.to_str()),
-                    Some("scene" | "urdf")
-                )
-            })
-            .map(|p| {
-                let text = std::fs::read_to_string(&p).unwrap();
-                crate::parse::parse_robot(&text, &Default::default())
-                    .unwrap_or_else(|e| panic!("{}: {e:?}", p.display()))
-                    .robot
-            })
-            .collect();
-        assert!(robots.len() >= 15, "{} examples", robots.len());
-        for n in 1..=5 {
-            for convention in [Convention::Standard, Convention::Modified] {
-                robots.push(crate::chains::random_chain(n, convention, 7 * n as u64));
-            }
-        }
+        let robots = crate::test_support::example_robots(5, 7);
         let mut varying = 0;
         for robot in robots {
             let name = robot.name.clone();

@@ -599,31 +599,7 @@ mod tests {
     /// of up to four joints.
     #[test]
     fn the_symbols_atoms_are_among_ds_and_their_partners() {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
-        let mut robots: Vec<crate::dynamics::Robot> = std::fs::read_dir(dir)
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| {
-                matches!(
-                    p.extension().and_then(|x| x.to_str()),
-                    Some("scene" | "urdf")
-                )
-            })
-            .map(|p| {
-                let text = std::fs::read_to_string(&p).unwrap();
-                crate::parse::parse_robot(&text, &Default::default())
-                    .unwrap_or_else(|e| panic!("{}: {e:?}", p.display()))
-                    .robot
-            })
-            .collect();
-        for n in 1..=4 {
-            for convention in [
-                crate::dynamics::Convention::Standard,
-                crate::dynamics::Convention::Modified,
-            ] {
-                robots.push(crate::chains::random_chain(n, convention, 11 * n as u64));
-            }
-        }
+        let robots = crate::test_support::example_robots(4, 11);
         let mut checked = 0;
         for robot in robots {
             let name = robot.name.clone();
