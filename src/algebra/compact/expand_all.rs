@@ -41,6 +41,8 @@ struct Graph<'a> {
     taken: Vec<AtomicBool>,
     /// Every node before this one is taken.
     first_open: AtomicUsize,
+    /// Set when a thread panicked expanding a node: the others stop rather than wait for it.
+    failed: AtomicBool,
 }
 
 impl Compact {
@@ -69,6 +71,7 @@ impl Compact {
             done: values.iter().map(|_| OnceLock::new()).collect(),
             taken: values.iter().map(|_| AtomicBool::new(false)).collect(),
             first_open: AtomicUsize::new(0),
+            failed: AtomicBool::new(false),
             values,
         };
         parallel::share(work, parallel::WORTH_SHARING, || graph.expand(self));
@@ -81,7 +84,8 @@ impl Compact {
 
 impl Graph<'_> {
     /// Expands nodes on this thread until every node is taken, waiting ([`Waiting`]) only when
-    /// each node not taken needs one not expanded yet.
+    /// each node not taken needs one not expanded yet; stops when another thread panicked (its
+    /// panic reaches the caller of [`parallel::share`]).
     fn expand(&self, arena: &Compact) {
         let mut waiting = Waiting::new();
         loop {
@@ -91,14 +95,25 @@ impl Graph<'_> {
             }
             match (first..self.values.len()).find(|&i| self.ready(i) && self.claim(i)) {
                 Some(i) => {
-                    let value = arena.substituted(self.values[i], |k| {
-                        self.done[self.node_of[k]]
-                            .get()
-                            .expect("a node's names are expanded before it")
-                    });
-                    let _ = self.done[i].set(value);
+                    let value = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        arena.substituted(self.values[i], |k| {
+                            self.done[self.node_of[k]]
+                                .get()
+                                .expect("a node's names are expanded before it")
+                        })
+                    }));
+                    match value {
+                        Ok(value) => {
+                            let _ = self.done[i].set(value);
+                        }
+                        Err(panic) => {
+                            self.failed.store(true, Ordering::Release);
+                            std::panic::resume_unwind(panic);
+                        }
+                    }
                     waiting = Waiting::new();
                 }
+                None if self.failed.load(Ordering::Acquire) => return,
                 None => waiting.pause(),
             }
         }
