@@ -237,7 +237,8 @@ fn grouped_ranked(e: &Expr, bases: &[Expr], ranked: &[Vec<(u32, i32)>]) -> Expr 
     }
     let term = |i: usize| ts[i].0.scale(&ts[i].1);
     let mut changed = false;
-    let mut products: Vec<Expr> = Vec::new();
+    // Each group of rates as `k · R · inner` (`R` its rest by rank), collected on ranks below.
+    let mut products: Vec<RateProduct> = Vec::new();
     let mut standing: Vec<usize> = Vec::new();
     for ((rest, degree), members) in groups {
         if members.len() < 2 || degree == 0 {
@@ -259,13 +260,9 @@ fn grouped_ranked(e: &Expr, bases: &[Expr], ranked: &[Vec<(u32, i32)>]) -> Expr 
             .collect();
         let (k, inner) = rate_form(&pairs, degree);
         changed = true;
-        products.push(Expr::product([
-            Expr::num(k),
-            Ranked::monomial_over(bases, &rest),
-            inner,
-        ]));
+        products.push(RateProduct { k, rest, inner });
     }
-    let (mut kept, mut collected) = collect_parameters(products);
+    let (mut kept, mut collected) = collect_rate_products(bases, products);
     // The terms as they stand whose factors other than parameters and coordinates hold a rate, by
     // those factors: each term's parameters and coordinates with its coefficient.
     let mut by_rest: FxHashMap<Factors, Vec<(Factors, usize)>> = FxHashMap::default();
@@ -300,6 +297,73 @@ fn grouped_ranked(e: &Expr, bases: &[Expr], ranked: &[Vec<(u32, i32)>]) -> Expr 
         kept.push(Expr::num(constant.clone()));
     }
     finish(e, kept, changed || collected)
+}
+
+/// A group of terms with their rates grouped, `k · R · inner` ([`grouped_ranked`]): `R` the
+/// rest the terms share, by rank, and `inner` the rates' form ([`rate_form`]), a sum or the square
+/// of one.
+struct RateProduct {
+    k: Rational,
+    rest: Factors,
+    inner: Expr,
+}
+
+impl RateProduct {
+    /// The product as an expression.
+    fn to_expr(&self, bases: &[Expr]) -> Expr {
+        Expr::product([
+            Expr::num(self.k.clone()),
+            Ranked::monomial_over(bases, &self.rest),
+            self.inner.clone(),
+        ])
+    }
+}
+
+/// [`collect_parameters`] of the rate products' expressions, found on their ranks: two products
+/// agree in everything but their parameters and coordinates when the rest of their `R` does and
+/// their `inner` is the same (their only factor that is not a base of the sum, and the one that
+/// holds the rates, so every product is collected with its like). Only the products left alone
+/// and the collected sums are built, not every product to be taken apart again. A product with
+/// nothing but `inner` (`R` = 1, whose expression a lone number may be distributed over) sends
+/// them all the way of the expressions.
+fn collect_rate_products(bases: &[Expr], products: Vec<RateProduct>) -> (Vec<Expr>, bool) {
+    if products.iter().any(|p| p.rest.is_empty()) {
+        return collect_parameters(products.iter().map(|p| p.to_expr(bases)).collect());
+    }
+    // By (the rest less its parameters and coordinates, inner): the products, each with its
+    // parameters and coordinates. A sum has a few groups: searched in turn.
+    type Key = (Factors, Expr);
+    let mut groups: Vec<(Key, Vec<(Factors, RateProduct)>)> = Vec::with_capacity(products.len());
+    for p in products {
+        let (params, others): (Factors, Factors) = p
+            .rest
+            .iter()
+            .partition(|&&(r, _)| is_length(&bases[r as usize]));
+        match groups
+            .iter_mut()
+            .find(|((o, inner), _)| *o == others && *inner == p.inner)
+        {
+            Some((_, parts)) => parts.push((params, p)),
+            None => groups.push(((others, p.inner.clone()), vec![(params, p)])),
+        }
+    }
+    let mut kept = Vec::with_capacity(groups.len());
+    let mut collected = false;
+    for ((others, inner), parts) in groups {
+        if let [(_, p)] = parts.as_slice() {
+            kept.push(p.to_expr(bases));
+            continue;
+        }
+        collected = true;
+        let sum = Expr::sum(
+            parts
+                .iter()
+                .map(|(params, p)| Ranked::monomial_over(bases, params).scale(&p.k)),
+        );
+        let rest = Expr::product([Ranked::monomial_over(bases, &others), inner]);
+        kept.push(Expr::product(factor_list(&sum).into_iter().chain([rest])));
+    }
+    (kept, collected)
 }
 
 /// The sum of the `out` terms (their common factors taken out) when the grouping `changed`
@@ -551,6 +615,55 @@ mod tests {
     /// The remembered form of a group of rates is the form of its coefficients as they are: the
     /// memo's key divides them by the first, and `k` scales back while the inner sum stays (squares,
     /// linear forms, either sign, fractions).
+    /// The grouping on ranks, whose rate products are collected on their ranks
+    /// ([`collect_rate_products`]), is the grouping on expressions: on the example sums, on
+    /// products that share everything but their lengths (collected, with a length common to
+    /// both), and on a group of rates with no other factor (the products' expressions then).
+    #[test]
+    fn rate_products_collect_on_ranks_as_on_expressions() {
+        let mut sums = example_sums();
+        for text in [
+            // (q̇1 + q̇2)² a2 s4 with d4 and with −lc4: collected as a2 (d4 − lc4) (…).
+            "a2*d4*sin(q4)*qd1^2 + 2*a2*d4*sin(q4)*qd1*qd2 + a2*d4*sin(q4)*qd2^2 \
+             - a2*lc4*sin(q4)*qd1^2 - 2*a2*lc4*sin(q4)*qd1*qd2 - a2*lc4*sin(q4)*qd2^2",
+            // The same with q3 (a prismatic coordinate is a length) and a term left alone.
+            "d4*cos(q2)*qdd1 + d4*cos(q2)*qdd2 + q3*cos(q2)*qdd1 + q3*cos(q2)*qdd2 + g*sin(q2)",
+            // Products of different rates or different trig factors stay apart.
+            "a1*sin(q1)*qdd1 + a1*sin(q1)*qdd2 + a2*cos(q1)*qd1^2 + 2*a2*cos(q1)*qd1*qd2 \
+             + a2*cos(q1)*qd2^2",
+            "a1*sin(q1)*qdd1 + a1*sin(q1)*qdd2 + a2*sin(q1)*qd1^2 + 2*a2*sin(q1)*qd1*qd2 \
+             + a2*sin(q1)*qd2^2",
+            // A square of rates with no other factor, beside a term.
+            "qd1^2 + 2*qd1*qd2 + qd2^2 + m1*qdd1",
+        ] {
+            sums.push(parse_expr(text).unwrap());
+        }
+        let mut ranked = 0;
+        for e in &sums {
+            if !matches!(e.kind(), Kind::Add(..)) || !has_rate(e) {
+                continue;
+            }
+            let Some(r) = super::super::ranked::rank_sum(e) else {
+                continue;
+            };
+            if !r.bases.iter().all(Expr::is_plain_base) {
+                continue;
+            }
+            let terms: Vec<Vec<(u32, i32)>> = r.terms.iter().map(|(f, _)| f.clone()).collect();
+            ranked += 1;
+            assert_eq!(grouped_ranked(e, &r.bases, &terms), grouped(e), "{e:?}");
+        }
+        assert!(ranked > 50, "only {ranked} sums on ranks");
+        // The collected product reads as the book writes it.
+        let e = parse_expr(
+            "a2*d4*sin(q4)*qd1^2 + 2*a2*d4*sin(q4)*qd1*qd2 + a2*d4*sin(q4)*qd2^2 \
+             - a2*lc4*sin(q4)*qd1^2 - 2*a2*lc4*sin(q4)*qd1*qd2 - a2*lc4*sin(q4)*qd2^2",
+        )
+        .unwrap();
+        let want = parse_expr("a2*(d4 - lc4)*sin(q4)*(qd1 + qd2)^2").unwrap();
+        assert_eq!(group_rates(&e), want);
+    }
+
     #[test]
     fn a_remembered_rate_form_is_the_form_of_the_coefficients_as_they_are() {
         let q = |i: u32| ((1u8, i), 1i64);
