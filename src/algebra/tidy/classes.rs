@@ -41,7 +41,7 @@
 
 use super::leading::key_divided;
 use super::memo::Memo;
-use super::ranked::{contract_ranked, rank_sum};
+use super::ranked::{contract_to_ranks, rank_sum};
 use super::share::share_cofactors;
 use crate::algebra::atom::{self, AtomId};
 use crate::algebra::expr::{Expr, Kind};
@@ -245,10 +245,9 @@ type Lead = Option<(AtomId, i32)>;
 /// The factors of a class's quotient ([`Class::item`]): its terms contracted on ranks and
 /// factored as the grouping by leading parameter factors a group ([`key_divided`]).
 fn factors_of(quotient: &Poly) -> Option<Option<Vec<Expr>>> {
-    let (contracted, ranks) = contract_ranked(quotient.ranked()?);
-    match ranks {
-        Some(s) => key_divided(&s.bases, &s.terms, &s.constant),
-        None => {
+    match contract_to_ranks(quotient.ranked()?) {
+        Ok(s) => key_divided(&s.bases, &s.terms, &s.constant),
+        Err(contracted) => {
             let r = rank_sum(&contracted)?;
             key_divided(&r.bases, &r.terms, &r.constant)
         }

@@ -29,19 +29,32 @@ use std::hash::{Hash, Hasher};
 /// identities made on ranked terms ([`RankedSum::contract`]); with the result's ranked terms when
 /// the passes ended in ranks (the grouping goes on from them, [`super::leading`]).
 pub(super) fn contract_ranked(ranked: Ranked<'_>) -> (Expr, Option<RankedSum>) {
+    match contract_to_ranks(ranked) {
+        Ok(sum) => (sum.to_expr(), Some(sum)),
+        Err(e) => (e, None),
+    }
+}
+
+/// [`contract_ranked`] without building the canonical sum when the passes end in ranks: the
+/// ranked terms (`Ok`), or the contracted expression when they left the ranks (`Err`). For a
+/// caller that goes on from the ranks alone (a class's quotient, [`super::classes`]).
+pub(super) fn contract_to_ranks(ranked: Ranked<'_>) -> Result<RankedSum, Expr> {
     if !contractible_ranked(&ranked) {
-        let sum = RankedSum::of(ranked);
-        return (sum.to_expr(), Some(sum));
+        return Ok(RankedSum::of(ranked));
     }
     if !ranked.bases.iter().all(Expr::is_plain_base) {
-        return (fixpoint(&ranked.to_expr(), PASS_LIMIT, pass), None);
+        return Err(fixpoint(&ranked.to_expr(), PASS_LIMIT, pass));
     }
     #[cfg(debug_assertions)]
     let on_expressions = fixpoint(&ranked.to_expr(), PASS_LIMIT, pass);
     let contracted = RankedSum::of(ranked).contract();
     #[cfg(debug_assertions)]
     assert_eq!(
-        contracted.0, on_expressions,
+        match &contracted {
+            Ok(sum) => sum.to_expr(),
+            Err(e) => e.clone(),
+        },
+        on_expressions,
         "contracted in ranks as on expressions"
     );
     contracted
@@ -444,10 +457,10 @@ impl RankedSum {
     /// identities made in ranks while no rule of squares may apply, the rest (and a pass whose
     /// merged value is not a base) by the passes on expressions; with the ranked terms when the
     /// passes ended in ranks.
-    fn contract(mut self) -> (Expr, Option<RankedSum>) {
+    fn contract(mut self) -> Result<RankedSum, Expr> {
         let mut passes = 0;
         let on_expressions =
-            |sum: &RankedSum, passes| (fixpoint(&sum.to_expr(), PASS_LIMIT - passes, pass), None);
+            |sum: &RankedSum, passes| Err(fixpoint(&sum.to_expr(), PASS_LIMIT - passes, pass));
         while passes < PASS_LIMIT {
             // A pass tries the square of an angle sum first: a term with two squared cosines may
             // start one.
@@ -464,7 +477,7 @@ impl RankedSum {
         if passes < PASS_LIMIT && self.squared_cosines(1) {
             return on_expressions(&self, passes);
         }
-        (self.to_expr(), Some(self))
+        Ok(self)
     }
 
     /// One pass of the angle-sum identities ([`pair_terms`]), the merged terms `c · h · R` put in
