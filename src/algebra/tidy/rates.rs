@@ -612,9 +612,6 @@ mod tests {
         out
     }
 
-    /// The remembered form of a group of rates is the form of its coefficients as they are: the
-    /// memo's key divides them by the first, and `k` scales back while the inner sum stays (squares,
-    /// linear forms, either sign, fractions).
     /// The grouping on ranks, whose rate products are collected on their ranks
     /// ([`collect_rate_products`]), is the grouping on expressions: on the example sums, on
     /// products that share everything but their lengths (collected, with a length common to
@@ -664,6 +661,9 @@ mod tests {
         assert_eq!(group_rates(&e), want);
     }
 
+    /// The remembered form of a group of rates is the form of its coefficients as they are: the
+    /// memo's key divides them by the first, and `k` scales back while the inner sum stays (squares,
+    /// linear forms, either sign, fractions).
     #[test]
     fn a_remembered_rate_form_is_the_form_of_the_coefficients_as_they_are() {
         let q = |i: u32| ((1u8, i), 1i64);
