@@ -21,8 +21,10 @@ pub(super) fn expr(e: &Expr) -> String {
 
 /// Signed pieces joined into a sum; `nested` sums are compact unless a piece contains a space.
 pub(super) fn sum(pieces: &[Piece], nested: bool) -> String {
-    // The bodies written one after another into one string, and joined from their slices.
-    let mut written = String::new();
+    // The bodies written one after another into one string, and joined from their slices (room
+    // for a typical term's text up front: grown from empty, the string was reallocated about once a
+    // term of a sheet's vectors).
+    let mut written = String::with_capacity(48 * pieces.len());
     let ends: Vec<usize> = pieces
         .iter()
         .map(|p| {

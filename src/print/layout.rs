@@ -278,7 +278,9 @@ fn rows_if_they_fit(lhs: &str, terms: Vec<Printed>) -> Result<String, Vec<Printe
 /// width units: `t1 + t2`, then ` - t3 + t4` (each later line starts with its sign); `0` for none.
 fn fill_lines(pieces: &[(String, usize)], room: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
-    let mut line = String::new();
+    // Room for the first line's pieces up front (a line holds a few; the later lines take twice the
+    // length of the one before them).
+    let mut line = String::with_capacity(pieces.iter().take(4).map(|(p, _)| p.len() + 3).sum());
     let mut used = 0;
     for (i, (p, w)) in pieces.iter().enumerate() {
         // Joined with its sign: ` - ` is as wide as the `-` it replaces, ` + ` adds a sign.
@@ -309,31 +311,54 @@ fn fill_lines(pieces: &[(String, usize)], room: usize) -> Vec<String> {
 /// `lhs = lines = rhs` as display math: `\[ … \]` for one line, else an `align*` whose later rows
 /// are indented.
 fn rows(lhs: Option<&str>, lines: &[String], rhs: Option<&str>) -> String {
-    let rhs_text = rhs.map(|r| format!(" = {r}")).unwrap_or_default();
-    if lines.len() == 1 {
-        let l = lhs.map(|l| format!("{l} = ")).unwrap_or_default();
-        format!("\\[ {l}{}{rhs_text} \\]\n", lines[0])
+    // Written piece by piece into one string sized up front (through `format!` each row and
+    // wrapper was a string of its own, grown from a guess: a sheet lays out a few hundred).
+    let room = lines.iter().map(|l| l.len() + 16).sum::<usize>()
+        + lhs.map_or(0, str::len)
+        + rhs.map_or(0, str::len)
+        + 40;
+    let mut out = String::with_capacity(room);
+    let push_rhs = |out: &mut String| {
+        if let Some(r) = rhs {
+            out.push_str(" = ");
+            out.push_str(r);
+        }
+    };
+    if lines.is_empty() {
+        out.push_str("\\begin{align*}\n\n\\end{align*}\n");
+    } else if let [line] = lines {
+        out.push_str("\\[ ");
+        if let Some(l) = lhs {
+            out.push_str(l);
+            out.push_str(" = ");
+        }
+        out.push_str(line);
+        push_rhs(&mut out);
+        out.push_str(" \\]\n");
     } else {
-        let l = lhs.map(|l| format!("{l} ")).unwrap_or_default();
-        let eq = if lhs.is_some() { "&= " } else { "& " };
-        let last = lines.len() - 1;
-        let body: Vec<String> = lines
-            .iter()
-            .enumerate()
-            .map(|(i, line)| {
-                let end = if i == last { rhs_text.as_str() } else { "" };
-                if i == 0 {
-                    format!("  {l}{eq}{line}{end}")
-                } else {
-                    format!("  &\\quad {}{end}", line.trim_start())
-                }
-            })
-            .collect();
-        format!(
-            "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
-            body.join(" \\\\\n")
-        )
+        out.push_str("\\begin{align*}\n  ");
+        match lhs {
+            Some(l) => {
+                out.push_str(l);
+                out.push_str(" &= ");
+            }
+            None => out.push_str("& "),
+        }
+        let last = lines.len().saturating_sub(1);
+        for (i, line) in lines.iter().enumerate() {
+            if i > 0 {
+                out.push_str(" \\\\\n  &\\quad ");
+                out.push_str(line.trim_start());
+            } else {
+                out.push_str(line);
+            }
+            if i == last {
+                push_rhs(&mut out);
+            }
+        }
+        out.push_str("\n\\end{align*}\n");
     }
+    out
 }
 
 /// A display term, its LaTeX and the LaTeX's [`width`]: measured where it is printed (for the

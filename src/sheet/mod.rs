@@ -565,8 +565,14 @@ fn abbreviate_into(latex: &str, out: &mut String) -> bool {
     let mut copied = 0;
     let mut at = 0;
     let mut any = false;
-    while let Some(i) = bytes[at..].iter().position(|&b| b == b'\\') {
+    while let Some(i) = next_backslash(&bytes[at..]) {
         at += i;
+        // Most commands of a sheet are other ones (`\left`, `\dot`, `\quad`): passed over on
+        // their first letters.
+        if !matches!(bytes.get(at + 1..at + 4), Some(b"sin" | b"cos")) {
+            at += 1;
+            continue;
+        }
         match Trig::at(&latex[at..]) {
             Some(trig) => {
                 out.push_str(&latex[copied..at]);
@@ -580,6 +586,32 @@ fn abbreviate_into(latex: &str, out: &mut String) -> bool {
     }
     out.push_str(&latex[copied..]);
     any
+}
+
+/// The place of the first `\\` in `bytes`, looked for eight bytes at a time (the sheet's text
+/// is tens of kilobytes, and a byte-by-byte search was most of abbreviating it).
+fn next_backslash(bytes: &[u8]) -> Option<usize> {
+    const ONES: u64 = u64::from_ne_bytes([0x01; 8]);
+    const HIGHS: u64 = u64::from_ne_bytes([0x80; 8]);
+    const BACKSLASHES: u64 = u64::from_ne_bytes([b'\\'; 8]);
+    let mut chunks = bytes.chunks_exact(8);
+    let mut at = 0;
+    for chunk in chunks.by_ref() {
+        let word = u64::from_le_bytes(chunk.try_into().expect("eight bytes"));
+        let x = word ^ BACKSLASHES;
+        // A byte of `x` is zero where the word holds a backslash; the lowest such byte is the
+        // lowest byte flagged here (a borrow only ever flags bytes above a zero one).
+        let zero = x.wrapping_sub(ONES) & !x & HIGHS;
+        if zero != 0 {
+            return Some(at + (zero.trailing_zeros() / 8) as usize);
+        }
+        at += 8;
+    }
+    chunks
+        .remainder()
+        .iter()
+        .position(|&b| b == b'\\')
+        .map(|i| at + i)
 }
 
 /// A sine or cosine of joint angles as the book abbreviates it: `\sin^{2} q_{3}` is `s_{3}^{2}`,
@@ -789,6 +821,33 @@ pub(crate) fn math(e: &Expr) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The word-at-a-time search finds the first backslash wherever it is (in either half of a
+    /// word, in the tail after the last whole word, after bytes of several-byte characters and
+    /// bytes that differ from a backslash in one bit), and none where there is none.
+    #[test]
+    fn the_next_backslash_is_the_first_one() {
+        let mut texts: Vec<String> = vec![
+            String::new(),
+            "no command here at all".into(),
+            "–—é\\π".into(),
+            "]\\\\".into(),
+            "\u{7c}\u{5d}\u{dc}\u{5c}x".into(),
+        ];
+        for at in 0..20 {
+            for len in [at + 1, at + 3, 24] {
+                let mut t: String = "abcdefghijklmnopqrstuvwxyz".chars().take(len).collect();
+                if at < t.len() {
+                    t.replace_range(at..at + 1, "\\");
+                }
+                texts.push(t);
+            }
+        }
+        for t in &texts {
+            let want = t.bytes().position(|b| b == b'\\');
+            assert_eq!(next_backslash(t.as_bytes()), want, "{t:?}");
+        }
+    }
 
     #[test]
     fn joint_angles_are_abbreviated_as_the_book_writes_them() {

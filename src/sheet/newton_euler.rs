@@ -222,20 +222,20 @@ fn vectors(der: &Derivation, frame: Frame) -> Vec<(String, &Vec3<Poly>)> {
     let mut out = Vec::new();
     for i in 0..n {
         let k = i + 1;
-        out.push((format!("\\omega_{{{k}}}"), &ne.omega[i]));
-        out.push((format!("\\alpha_{{{k}}}"), &ne.alpha[i]));
-        out.push((format!("a_{{c,{k}}}"), &ne.a_c[i]));
-        out.push((format!("a_{{e,{k}}}"), &ne.a_e[i]));
-        out.push((format!("g_{{{k}}}"), &ne.g[i]));
+        out.push((indexed("\\omega_{", k), &ne.omega[i]));
+        out.push((indexed("\\alpha_{", k), &ne.alpha[i]));
+        out.push((indexed("a_{c,", k), &ne.a_c[i]));
+        out.push((indexed("a_{e,", k), &ne.a_e[i]));
+        out.push((indexed("g_{", k), &ne.g[i]));
         if let (true, Some(a)) = (k == n, &ne.a_payload) {
             out.push(("a_{c,L}".to_string(), a));
         }
     }
     for i in (0..n).rev() {
         let k = i + 1;
-        out.push((format!("f_{{{k}}}"), &ne.f[i]));
+        out.push((indexed("f_{", k), &ne.f[i]));
         if let Some(m) = &ne.n[i] {
-            out.push((format!("n_{{{k}}}"), m));
+            out.push((indexed("n_{", k), m));
         }
     }
     out
@@ -272,10 +272,26 @@ fn vector(
     }
 }
 
+/// `prefix`, the index `k` and a closing brace: `indexed("a_{c,", 2)` is `a_{c,2}` (what
+/// `format!` writes, without its machinery: a sheet names a few hundred vectors).
+fn indexed(prefix: &str, k: usize) -> String {
+    let mut out = String::with_capacity(prefix.len() + 4);
+    out.push_str(prefix);
+    out.push_str(itoa::Buffer::new().format(k));
+    out.push('}');
+    out
+}
+
 /// The name of component `k` of the vector `name` when it is written component by component:
 /// `(name)_{x}`, `(name)_{y}`, `(name)_{z}`.
 fn component_name(name: &str, k: usize) -> String {
-    format!("({name})_{{{}}}", ["x", "y", "z"][k])
+    let mut out = String::with_capacity(name.len() + 6);
+    out.push('(');
+    out.push_str(name);
+    out.push_str(")_{");
+    out.push_str(["x", "y", "z"][k]);
+    out.push('}');
+    out
 }
 
 /// The moment equation of the backward recursion as `dynamics::newton_euler` computes it,
@@ -344,36 +360,38 @@ pub(super) fn section(
     out.push_str("\\subsection*{Forward recursion}\n");
     for i in 0..n {
         let k = i + 1;
-        out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
+        out.push_str("\\paragraph{Link ");
+        out.push_str(itoa::Buffer::new().format(k));
+        out.push_str(".}\n");
         out.push_str(&vector(
             lay,
             tidied,
             frame,
-            &format!("\\omega_{{{k}}}"),
+            &indexed("\\omega_{", k),
             &ne.omega[i],
         ));
         out.push_str(&vector(
             lay,
             tidied,
             frame,
-            &format!("\\alpha_{{{k}}}"),
+            &indexed("\\alpha_{", k),
             &ne.alpha[i],
         ));
         out.push_str(&vector(
             lay,
             tidied,
             frame,
-            &format!("a_{{c,{k}}}"),
+            &indexed("a_{c,", k),
             &ne.a_c[i],
         ));
         out.push_str(&vector(
             lay,
             tidied,
             frame,
-            &format!("a_{{e,{k}}}"),
+            &indexed("a_{e,", k),
             &ne.a_e[i],
         ));
-        out.push_str(&vector(lay, tidied, frame, &format!("g_{{{k}}}"), &ne.g[i]));
+        out.push_str(&vector(lay, tidied, frame, &indexed("g_{", k), &ne.g[i]));
         if let (true, Some(a)) = (k == n, &ne.a_payload) {
             out.push_str("The payload's centre of mass moves with link ");
             out.push_str(&format!(
@@ -400,10 +418,12 @@ pub(super) fn section(
     }
     for i in (0..n).rev() {
         let k = i + 1;
-        out.push_str(&format!("\\paragraph{{Link {k}.}}\n"));
-        out.push_str(&vector(lay, tidied, frame, &format!("f_{{{k}}}"), &ne.f[i]));
+        out.push_str("\\paragraph{Link ");
+        out.push_str(itoa::Buffer::new().format(k));
+        out.push_str(".}\n");
+        out.push_str(&vector(lay, tidied, frame, &indexed("f_{", k), &ne.f[i]));
         match &ne.n[i] {
-            Some(m) => out.push_str(&vector(lay, tidied, frame, &format!("n_{{{k}}}"), m)),
+            Some(m) => out.push_str(&vector(lay, tidied, frame, &indexed("n_{", k), m)),
             None => out.push_str(&format!(
                 "The torque $n_{{{k}}}$ is not needed: only prismatic joints precede link {k}.\n"
             )),

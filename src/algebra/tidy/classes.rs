@@ -159,7 +159,7 @@ fn classes(p: &Poly) -> Option<Vec<Class>> {
     // every pass pairs and merges them as it would the class's.
     // Each term's class, and each class's lead and size (so that its terms are gathered in a
     // vector of their number).
-    let mut leads: Vec<(Lead, usize)> = Vec::new();
+    let mut leads: Vec<(Lead, usize)> = Vec::with_capacity(16);
     let class_of: Vec<usize> = p
         .terms()
         .iter()

@@ -11,9 +11,8 @@
 //! and factored ([`super::Grouping::Trig`]). Every term is `coefficient × key`, and the terms add up
 //! to the side exactly.
 
-use super::contract::contract_normal;
 use super::factor::factor_list;
-use super::group::{group, Grouping};
+use super::group::Grouping;
 use crate::algebra::atom::{self, AtomId, Class};
 use crate::algebra::expr::Expr;
 use crate::algebra::normal::to_poly;
@@ -31,21 +30,23 @@ pub fn equation_terms(lhs: &Expr) -> Vec<Expr> {
 }
 
 /// [`equation_terms`] of a polynomial (its own normal form). The side is collected by its key atoms
-/// on the polynomial's own monomials, so every coefficient is already in normal form when the
-/// display rules ([`contract_normal`], [`group`], [`factor_list`]) take it.
+/// on the polynomial's own monomials, so every coefficient is a polynomial the display rules take
+/// as it stands ([`super::tidy_poly_by`], then [`factor_list`]).
 pub fn equation_terms_poly(lhs: &Poly) -> Vec<Expr> {
     let mut out = Vec::new();
     let mut rest = lhs.clone();
     for role in [Order::Acceleration, Order::Rate] {
         let (groups, left) = collect_poly(&rest, role);
         for (key, coeff) in groups {
-            let coeff = group(&contract_normal(&coeff.to_expr()), Grouping::Leading);
+            // On the polynomial's ranks, class by class ([`super::tidy_poly_by`]): what the passes
+            // on its expression give, its classes remembered with the vectors' of a sheet.
+            let coeff = super::tidy_poly_by(&coeff, Grouping::Leading);
             out.push(Expr::product(factor_list(&coeff).into_iter().chain([key])));
         }
         rest = left;
     }
     // Simpler trig parts first (`… cos(q1) + … cos(q1+q2)`, as Spong writes φ1), then canonical order.
-    let mut others: Vec<Expr> = group(&contract_normal(&rest.to_expr()), Grouping::Trig)
+    let mut others: Vec<Expr> = super::tidy_poly_by(&rest, Grouping::Trig)
         .terms()
         .into_iter()
         .map(|(t, c)| t.scale(&c))

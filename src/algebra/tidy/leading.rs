@@ -181,15 +181,15 @@ fn factored<C: Borrow<Rational>>(
     let mut divided: Vec<Term> = terms
         .iter()
         .map(|(fs, c)| {
-            let rest: Vec<(u32, i32)> = fs
-                .iter()
-                .filter_map(|&(r, k)| {
-                    let m = monomial
-                        .binary_search_by_key(&r, |&(s, _)| s)
-                        .map_or(0, |i| monomial[i].1);
-                    (k != m).then_some((r, k - m))
-                })
-                .collect();
+            // Sized for every factor up front: a term has more factors than a vector grown from
+            // empty holds at first, and the copy each growth makes showed in a sheet's profile.
+            let mut rest: Vec<(u32, i32)> = Vec::with_capacity(fs.len());
+            rest.extend(fs.iter().filter_map(|&(r, k)| {
+                let m = monomial
+                    .binary_search_by_key(&r, |&(s, _)| s)
+                    .map_or(0, |i| monomial[i].1);
+                (k != m).then_some((r, k - m))
+            }));
             (rest, c.borrow().clone())
         })
         .collect();
