@@ -164,7 +164,8 @@ pub fn join<A: Send, B>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B) -> 
 /// that only a few results are held at a time however slow the consumer (a pipe to a slow
 /// reader): for a document of megabytes written as it is printed (memory touched for the first
 /// time costs more here than the printing). The calling thread consumes, and computes the next
-/// item no thread took whenever the one it is due to consume is not ready.
+/// item no thread took, within the same window, whenever the one it is due to consume is not
+/// ready (past the window it waits: a worker holds that item).
 pub fn map_in_order<T: Sync, R: Send>(
     items: &[T],
     weight: impl Fn(&T) -> usize,
@@ -244,9 +245,15 @@ pub fn map_in_order<T: Sync, R: Send>(
                 }
                 assert!(!ready.failed, "a worker thread does not panic");
                 drop(ready);
-                let j = next.fetch_add(1, Ordering::Relaxed);
-                if let Some(item) = items.get(j) {
-                    let r = f(item);
+                // The next item no thread took, within the workers' window past this one: a
+                // worker that took item `i` and was then held off its core (a busy machine) must
+                // not let this thread compute every item after it meanwhile. Item `i` itself is
+                // within the window, so when none can be taken a worker holds it and will give it.
+                let taken = next.fetch_update(Ordering::Relaxed, Ordering::Relaxed, |j| {
+                    (j < items.len() && j < i + ahead).then_some(j + 1)
+                });
+                if let Ok(j) = taken {
+                    let r = f(&items[j]);
                     state.0.lock().expect("a worker does not panic").results[j] = Some(r);
                     continue;
                 }
@@ -308,6 +315,37 @@ mod tests {
             assert_eq!(got, want, "min_total {min_total}");
         }
         map_in_order(&[] as &[u64], |_| 1, 0, work, |_, _| panic!("no item"));
+    }
+
+    /// A worker held off its core while it holds the item due (here: the first item a worker
+    /// takes sleeps 20 ms) does not let the consuming thread compute every later item meanwhile:
+    /// it computes up to the window and waits (without that, 50 to 60 items ahead; CI met it once
+    /// with the tests of other modules running beside this one).
+    #[test]
+    fn the_consumer_stays_within_the_window_while_a_worker_holds_the_item_due() {
+        let items: Vec<u64> = (0..64).collect();
+        let caller = std::thread::current().id();
+        let slowed = std::sync::atomic::AtomicBool::new(false);
+        let started = AtomicUsize::new(0);
+        let mut most = 0;
+        map_in_order(
+            &items,
+            |_| usize::MAX / 128,
+            0,
+            |&n| {
+                started.fetch_add(1, Ordering::SeqCst);
+                if std::thread::current().id() != caller && !slowed.swap(true, Ordering::SeqCst) {
+                    std::thread::sleep(std::time::Duration::from_millis(20));
+                }
+                n
+            },
+            |i, _| {
+                most = most.max(started.load(Ordering::SeqCst) - i);
+                std::thread::sleep(std::time::Duration::from_micros(300));
+            },
+        );
+        assert_eq!(started.load(Ordering::SeqCst), items.len());
+        assert!(most <= AHEAD * threads() + 1, "{most} computed ahead");
     }
 
     /// A slow consumer holds the workers back: they never compute more than their window past the
